@@ -1,0 +1,132 @@
+"""Struct-of-arrays particle storage.
+
+Every field is one numpy array whose first axis runs over particles. The
+rank's own particles come first (``[0, n_owned)``), ghost copies received in
+the halo follow (``[n_owned, n)``). Moving particles have ``kind == MOVING``;
+fixed dummy wall particles have ``kind == WALL`` (no-slip) or ``WALL_SLIP``
+(free-slip).
+
+Fields are declared once with a per-particle shape (``()``, ``("dim",)`` or
+``(3, 3)``); packing to and from flat float64 rows is what the parallel
+package uses to move particles and ghosts between ranks. Integer fields go
+through float64 exactly (global ids stay below 2**53).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+MOVING = 0
+WALL = 1  # fixed wall particle, no-slip
+WALL_SLIP = 2  # fixed wall particle, free-slip
+
+
+@dataclass(frozen=True)
+class Field:
+    """A per-particle quantity: name, shape per particle, dtype, meaning."""
+
+    name: str
+    shape: tuple
+    dtype: type
+    doc: str
+
+
+# Fields every particle has, whatever its material.
+CORE_FIELDS = (
+    Field("gid", (), np.int64, "global particle id"),
+    Field("kind", (), np.int8, "0 moving, 1 no-slip wall, 2 free-slip wall"),
+    Field("x", ("dim",), np.float64, "position [m]"),
+    Field("v", ("dim",), np.float64, "velocity (wall: wall velocity) [m/s]"),
+    Field("mass", (), np.float64, "mass [kg]"),
+    Field("rho", (), np.float64, "density [kg/m^d]"),
+    Field("p", (), np.float64, "pressure [Pa]"),
+    Field("normal", ("dim",), np.float64, "wall normal into the material (walls only)"),
+)
+
+
+class Particles:
+    """Owned particles followed by ghosts, one numpy array per field."""
+
+    def __init__(self, dim, fields, arrays, n_owned):
+        self.dim = dim
+        self.fields = tuple(fields)
+        self.arrays = arrays
+        self.n_owned = n_owned
+
+    @classmethod
+    def empty(cls, dim, fields, n=0):
+        arrays = {f.name: np.zeros((n,) + _shape(f, dim), dtype=f.dtype) for f in fields}
+        return cls(dim, fields, arrays, n)
+
+    def __getattr__(self, name):
+        try:
+            return self.__dict__["arrays"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    @property
+    def n(self):
+        """Owned plus ghost particles."""
+        return len(self.arrays["gid"])
+
+    @property
+    def n_ghost(self):
+        return self.n - self.n_owned
+
+    def field(self, name):
+        for f in self.fields:
+            if f.name == name:
+                return f
+        raise KeyError(name)
+
+    def width(self, names):
+        """Number of float64 columns the named fields take in a packed row."""
+        return sum(int(np.prod(_shape(self.field(n), self.dim), dtype=np.int64)) for n in names)
+
+    def pack(self, names, index):
+        """Rows ``index`` of the named fields as one (len(index), width) float64 array."""
+        out = np.empty((len(index), self.width(names)))
+        col = 0
+        for name in names:
+            a = self.arrays[name]
+            w = int(np.prod(a.shape[1:], dtype=np.int64))
+            out[:, col:col + w] = a[index].reshape(len(index), w)
+            col += w
+        return out
+
+    def unpack_into(self, names, rows, start):
+        """Write packed ``rows`` into the named fields from particle ``start`` on."""
+        col = 0
+        n = len(rows)
+        for name in names:
+            a = self.arrays[name]
+            w = int(np.prod(a.shape[1:], dtype=np.int64))
+            a[start:start + n] = rows[:, col:col + w].reshape((n,) + a.shape[1:])
+            col += w
+
+    def resize(self, n_owned, n_ghost):
+        """Set new owned and ghost counts, keeping the first ``n_owned`` owned rows."""
+        keep = min(n_owned, self.n_owned)
+        for f in self.fields:
+            old = self.arrays[f.name]
+            new = np.zeros((n_owned + n_ghost,) + old.shape[1:], dtype=old.dtype)
+            new[:keep] = old[:keep]
+            self.arrays[f.name] = new
+        self.n_owned = n_owned
+
+    def select_owned(self, index):
+        """Keep only the owned particles ``index`` (drops all ghosts)."""
+        for f in self.fields:
+            self.arrays[f.name] = np.ascontiguousarray(self.arrays[f.name][index])
+        self.n_owned = len(index)
+
+    def owned(self, name):
+        return self.arrays[name][: self.n_owned]
+
+    def owned_fields(self):
+        """Dict of every field over the owned particles (for frames)."""
+        return {f.name: self.arrays[f.name][: self.n_owned] for f in self.fields}
+
+
+def _shape(field, dim):
+    return tuple(dim if s == "dim" else s for s in field.shape)
