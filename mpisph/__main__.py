@@ -1,0 +1,161 @@
+"""Command line: python -m mpisph CASE [options] | list | info CASE.
+
+Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
+``mpisph: error: ...`` on stderr and status 2 before anything is written; a
+blow-up writes a last frame and ends with status 3.
+"""
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+
+from .errors import BlowUp, InputError
+
+USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
+         "[--out DIR] [--restart FRAME] [--quiet]\n"
+         "       python -m mpisph list\n"
+         "       python -m mpisph info CASE")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise InputError(message)
+
+
+def _parser():
+    p = _Parser(prog="mpisph", usage=USAGE, description="MPI-parallel SPH for fluids and geomaterials.")
+    p.add_argument("case")
+    p.add_argument("--set", dest="overrides", nargs="+", action="extend", default=[],
+                   metavar="NAME=VALUE", help="override a case parameter")
+    p.add_argument("--t-end", type=float, help="simulated end time [s]")
+    p.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
+    p.add_argument("--out", help="output directory (default runs/CASE)")
+    p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
+    p.add_argument("--quiet", action="store_true", help="no progress lines")
+    return p
+
+
+def _overrides(args):
+    out = {}
+    for item in args.overrides:
+        if "=" not in item:
+            raise InputError(f"--set takes NAME=VALUE, not {item!r}")
+        name, value = item.split("=", 1)
+        out[name.strip()] = value.strip()
+    if args.t_end is not None:
+        out["t_end"] = repr(args.t_end)
+    if args.output_interval is not None:
+        out["output_interval"] = repr(args.output_interval)
+    return out
+
+
+def cmd_list():
+    from .case import case_names, describe, load_case_module
+    names = case_names()
+    width = max(map(len, names), default=0)
+    for name in names:
+        print(f"{name:<{width}}  {describe(load_case_module(name))}")
+
+
+def cmd_info(name):
+    from .case import all_params, describe, load_case_module
+    module = load_case_module(name)
+    print(f"{name}: {describe(module)}")
+    print()
+    params = all_params(module)
+    width = max(map(len, params))
+    for key, p in params.items():
+        extra = f" (one of {', '.join(p.choices)})" if p.choices else ""
+        print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
+
+
+def _prepare_out_dir(comm, path):
+    """Create the output directory on rank 0 and check it can be written."""
+    problem = None
+    if comm.rank == 0:
+        try:
+            os.makedirs(path, exist_ok=True)
+            with tempfile.NamedTemporaryFile(dir=path):
+                pass
+        except OSError as e:
+            problem = f"cannot write output directory {path!r}: {e.strerror or e}"
+    problem = comm.bcast(problem, root=0)
+    if problem:
+        raise InputError(problem)
+
+
+def run(args, comm):
+    from . import case as cases
+    from .initial import make_scheme, particles_from_case, particles_from_frame
+    from .io.diagnostics import Diagnostics
+    from .io.frames import check_frame, read_frame
+    from .observables import observable_names
+    from .progress import Progress
+    from .solver import Simulation
+
+    module = cases.load_case_module(args.case)
+    overrides = _overrides(args)
+    frame = None
+    if args.restart:
+        check_frame(args.restart)
+        frame = read_frame(args.restart, walls=True)
+        written_by = frame["params"].get("case")
+        if written_by != args.case:
+            raise InputError(f"{args.restart} was written by case {written_by!r}, not {args.case!r}")
+        values = cases.resolve_params(module, overrides, base=frame["params"])
+    else:
+        values = cases.resolve_params(module, overrides)
+    values["case"] = args.case
+    case = cases.build_case(module, values)
+    scheme = make_scheme(case, values)
+    case.validate(2.0 * values["h_factor"] * case.dp)
+    if frame is None:
+        particles, t, step = particles_from_case(comm, case, scheme), 0.0, 0
+    else:
+        particles, t, step = particles_from_frame(comm, frame, scheme), frame["t"], frame["step"]
+    out_dir = args.out or os.path.join("runs", args.case)
+    progress = Progress(comm, quiet=args.quiet)
+    sim = Simulation(comm, case, values, particles, scheme, t=t, step=step, out_dir=out_dir,
+                     diagnostics=None, progress=progress)
+    _prepare_out_dir(comm, out_dir)
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim), append=frame is not None)
+    progress.start(sim)
+    wall0, step0 = time.perf_counter(), sim.step
+    try:
+        sim.run()
+    finally:
+        sim.diagnostics.close()
+    progress.finish(sim, time.perf_counter() - wall0, step0)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    from mpi4py import MPI
+    comm = MPI.COMM_WORLD
+    try:
+        if argv[:1] == ["list"]:
+            if comm.rank == 0:
+                cmd_list()
+            return 0
+        if argv[:1] == ["info"]:
+            if len(argv) != 2:
+                raise InputError("usage: python -m mpisph info CASE")
+            if comm.rank == 0:
+                cmd_info(argv[1])
+            return 0
+        run(_parser().parse_args(argv), comm)
+        return 0
+    except InputError as e:
+        if comm.rank == 0:
+            print(f"mpisph: error: {e}", file=sys.stderr)
+        return 2
+    except BlowUp as e:
+        if comm.rank == 0:
+            print(f"mpisph: {e}", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

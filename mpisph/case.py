@@ -1,0 +1,205 @@
+"""Cases: typed parameters, loading case files, and the Case description.
+
+A case file ``cases/NAME.py`` holds a docstring (its first line is the
+one-line description), ``PARAMS`` (a dict of ``Param``) and ``setup(p)``,
+which receives the validated parameters as attributes and returns a
+``Case``. Every case also has the run parameters in ``RUN_PARAMS``.
+"""
+
+import difflib
+import importlib.util
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from .errors import InputError
+from .kernels import KERNELS
+from .stabilisers.transport_velocity import STABILISERS
+
+CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+
+
+@dataclass(frozen=True)
+class Param:
+    """A case parameter: default value (its type is the parameter's type), unit, meaning."""
+
+    default: object
+    unit: str
+    doc: str
+    choices: tuple = ()
+    positive: bool = False
+
+    @property
+    def type(self):
+        return type(self.default)
+
+    def parse(self, name, text):
+        """Convert command-line text to the parameter's type, or raise InputError."""
+        kind = self.type
+        try:
+            if kind is bool:
+                low = text.strip().lower()
+                if low not in ("true", "false", "1", "0", "yes", "no", "on", "off"):
+                    raise ValueError
+                value = low in ("true", "1", "yes", "on")
+            else:
+                value = kind(text)
+        except ValueError:
+            raise InputError(f"parameter {name} takes a {kind.__name__}, not {text!r}") from None
+        return self.check(name, value)
+
+    def check(self, name, value):
+        if self.type is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, self.type):
+            raise InputError(f"parameter {name} takes a {self.type.__name__}, not {value!r}")
+        if self.choices and value not in self.choices:
+            raise InputError(f"parameter {name} must be one of {', '.join(map(str, self.choices))}, not {value!r}")
+        if self.positive and not value > 0:
+            raise InputError(f"parameter {name} must be positive, not {value!r}")
+        return value
+
+
+RUN_PARAMS = {
+    "t_end": Param(1.0, "s", "simulated end time", positive=True),
+    "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
+    "kernel": Param("wendland_c2", "-", "smoothing kernel", choices=tuple(KERNELS)),
+    "h_factor": Param(1.3, "-", "smoothing length h = h_factor * dp", positive=True),
+    "time_stepping": Param("dual", "-", "dual: 001_ Eqs. 9-11; single: 000_ Eq. 38",
+                           choices=("dual", "single")),
+    "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean particles per rank - 1 exceeds this",
+                                 positive=True),
+    "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",
+                               positive=True),
+}
+
+
+@dataclass
+class Fluid:
+    """Weakly compressible fluid (000_ Eq. 3, 001_ Eqs. 1-7)."""
+
+    rho0: float
+    c0: float
+    viscosity: float = 0.0  # dynamic viscosity [Pa s]
+
+
+@dataclass
+class Body:
+    """Moving particles of one material with their initial state."""
+
+    name: str
+    x: np.ndarray
+    velocity: np.ndarray | None = None  # (n, dim)
+    pressure: np.ndarray | None = None  # (n,)
+
+
+@dataclass
+class Wall:
+    """Fixed dummy particles: positions, inward normals, wall velocity, slip condition."""
+
+    name: str
+    x: np.ndarray
+    normal: np.ndarray
+    velocity: np.ndarray | None = None  # (n, dim); zero if None
+    slip: bool = False
+
+
+@dataclass
+class Case:
+    """Everything the solver needs to know about one simulation."""
+
+    dim: int
+    domain: tuple  # (lo, hi) corners; a particle leaving it stops the run
+    dp: float
+    material: Fluid
+    bodies: list
+    walls: list = field(default_factory=list)
+    gravity: tuple | None = None
+    periodic: tuple | None = None
+    slab_axis: int = 0
+    density_reinit: str = "none"  # none | inner | free_surface
+    stabiliser: str = "none"  # none | tvf_limited
+    u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
+
+    def __post_init__(self):
+        self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
+        self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
+        self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
+
+    def validate(self, support):
+        """Raise InputError for a case that cannot run."""
+        if not self.dp > 0:
+            raise InputError(f"spacing dp must be positive, not {self.dp!r}")
+        lo, hi = self.domain
+        if np.any(hi <= lo):
+            raise InputError("the domain has no volume: every upper corner must exceed the lower one")
+        for b in list(self.bodies) + list(self.walls):
+            if len(b.x) == 0:
+                raise InputError(f"body {b.name!r} has no particles at dp={self.dp:g} m")
+            outside = np.any((b.x < lo) | (b.x >= hi), axis=1)
+            if outside.any() and not isinstance(b, Wall):
+                k = int(np.argmax(outside))
+                raise InputError(f"body {b.name!r} lies outside the domain "
+                                 f"(particle at {np.round(b.x[k], 6).tolist()}, domain {lo.tolist()} to {hi.tolist()})")
+        for a in range(self.dim):
+            if self.periodic[a] and hi[a] - lo[a] < 2 * support:
+                raise InputError(f"periodic axis {'xyz'[a]} is shorter than twice the kernel support")
+        if self.stabiliser not in STABILISERS:
+            raise InputError(f"stabiliser must be one of {', '.join(STABILISERS)}, not {self.stabiliser!r}")
+        if self.density_reinit not in ("none", "inner", "free_surface"):
+            raise InputError(f"density_reinit must be none, inner or free_surface, not {self.density_reinit!r}")
+
+
+def case_names():
+    return sorted(p.stem for p in CASES_DIR.glob("*.py") if not p.stem.startswith("_"))
+
+
+def load_case_module(name):
+    """Import ``cases/NAME.py`` (or a case file given by its path).
+
+    Unknown names raise InputError with a suggestion.
+    """
+    path = Path(name) if name.endswith(".py") else CASES_DIR / f"{name}.py"
+    if not path.is_file():
+        close = difflib.get_close_matches(name, case_names(), n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else "; see 'python -m mpisph list'"
+        raise InputError(f"unknown case {name!r}{hint}")
+    spec = importlib.util.spec_from_file_location(f"mpisph_case_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def all_params(module):
+    """Case parameters followed by the run parameters (case values override defaults)."""
+    params = dict(RUN_PARAMS)
+    params.update(module.PARAMS)
+    return params
+
+
+def describe(module):
+    return (module.__doc__ or "").strip().splitlines()[0] if module.__doc__ else ""
+
+
+def resolve_params(module, overrides, base=None):
+    """Defaults (or ``base``), then ``overrides`` {name: text}; returns {name: value}."""
+    params = all_params(module)
+    values = {k: p.default for k, p in params.items()} if base is None else dict(base)
+    for name, text in overrides.items():
+        if name not in params:
+            close = difflib.get_close_matches(name, list(params), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise InputError(f"unknown parameter {name!r} for this case{hint}")
+        values[name] = params[name].parse(name, text)
+    for name, value in values.items():
+        if name in params:
+            values[name] = params[name].check(name, value)
+    return values
+
+
+def build_case(module, values):
+    """Call the case's ``setup`` with the parameter values as attributes."""
+    return module.setup(SimpleNamespace(**values))
+

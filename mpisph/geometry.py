@@ -1,0 +1,66 @@
+"""Lattice fills of simple shapes and dummy-particle walls around boxes.
+
+Particles sit at the centres of lattice cells of spacing dp (lo + (i + 1/2)
+dp along each axis), so every particle's volume is exactly dp^d; a box whose
+side is not a multiple of dp holds floor(L/dp) particles along it.
+"""
+
+import numpy as np
+
+from .errors import InputError
+
+
+def _axis_points(lo, hi, dp, what):
+    n = int(np.floor((hi - lo) / dp + 1e-9))
+    if n < 1:
+        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi - lo:g} m across)")
+    return lo + (np.arange(n) + 0.5) * dp
+
+
+def box(lo, hi, dp, what="the box"):
+    """Cell-centred lattice filling the box [lo, hi] (2D or 3D)."""
+    axes = [_axis_points(a, b, dp, what) for a, b in zip(lo, hi)]
+    grids = np.meshgrid(*axes, indexing="ij")
+    return np.stack([g.ravel() for g in grids], axis=1)
+
+
+def disk(centre, radius, dp, what="the disk"):
+    """Lattice points (spacing dp, one point at the centre) inside a circle or sphere."""
+    centre = np.asarray(centre, dtype=float)
+    if 2 * radius < dp:
+        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({2 * radius:g} m across)")
+    m = int(np.ceil(radius / dp))
+    axis = np.arange(-m, m + 1) * dp
+    grids = np.meshgrid(*([axis] * len(centre)), indexing="ij")
+    pts = np.stack([g.ravel() for g in grids], axis=1)
+    return centre + pts[np.sum(pts**2, axis=1) < radius**2]
+
+
+def box_walls(lo, hi, dp, layers, open_sides=()):
+    """Dummy wall particles in ``layers`` lattice layers around the box [lo, hi].
+
+    ``open_sides`` names sides left without wall, e.g. ``("+y",)`` for an
+    open top. Returns (positions, inward unit normals); the normal of a wall
+    particle points from it to the nearest point of the box.
+    """
+    lo = np.asarray(lo, dtype=float)
+    hi = np.asarray(hi, dtype=float)
+    dim = len(lo)
+    ext_lo = lo - layers * dp
+    ext_hi = hi + layers * dp
+    for side in open_sides:
+        a = "xyz".index(side[1])
+        if side[0] == "+":
+            ext_hi[a] = hi[a]
+        else:
+            ext_lo[a] = lo[a]
+    axes = [lo[a] + (np.arange(int(round((ext_lo[a] - lo[a]) / dp)),
+                               int(round((ext_hi[a] - lo[a]) / dp))) + 0.5) * dp
+            for a in range(dim)]
+    grids = np.meshgrid(*axes, indexing="ij")
+    pts = np.stack([g.ravel() for g in grids], axis=1)
+    inside = np.all((pts > lo) & (pts < hi), axis=1)
+    pts = pts[~inside]
+    towards = np.clip(pts, lo, hi) - pts
+    normals = towards / np.linalg.norm(towards, axis=1)[:, None]
+    return pts, normals

@@ -1,0 +1,30 @@
+"""Launch ``python -m mpisph`` under mpirun from tests, benchmarks and scripts."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# What scripts/mpi_env.sh exports for Open MPI 4: run as root, more ranks than cores,
+# no cross-memory attach (not allowed in containers). Set values in the environment win.
+MPI_ENV = {
+    "OMPI_ALLOW_RUN_AS_ROOT": "1",
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+    "OMPI_MCA_rmaps_base_oversubscribe": "1",
+    "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
+}
+
+
+def mpirun_mpisph(args, ranks=1, timeout=None):
+    """``mpirun -n ranks python -m mpisph args`` from the repository root.
+
+    Returns the CompletedProcess (stdout and stderr captured as text); a run
+    still going after ``timeout`` seconds is killed (subprocess.TimeoutExpired),
+    so a deadlock fails instead of hanging.
+    """
+    cmd = ["mpirun", "-n", str(ranks), sys.executable, "-m", "mpisph", *map(str, args)]
+    env = dict(MPI_ENV, **os.environ)
+    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)

@@ -1,0 +1,261 @@
+"""Weakly compressible fluid with the linearised Riemann solver.
+
+Equation of state p = c0^2 (rho - rho0) (000_ Eq. 3). Pairwise interface
+states from the linearised Riemann solver with dissipation limiter
+(001_ Eqs. 4-6; the acoustic form of 000_ Eqs. 18-20 when rho_L c_L equals
+rho_R c_R):
+
+    U*  = (U_l + U_r)/2 + (p_l - p_r) / (2 rho_bar c)
+    P*  = (p_l + p_r)/2 + beta rho_bar c (U_l - U_r) / 2
+    beta = min(eta max((U_l - U_r)/c, 0), 1),   eta = 3
+
+In mpisph's sign convention (e_ij from j to i, see kernels.py) the
+compression speed U_l - U_r equals -u_jump with u_jump = (v_i - v_j).e_ij.
+Continuity (000_ Eq. 16 / 001_ Eq. 3) and pressure acceleration
+(000_ Eq. 17) then read
+
+    drho_i/dt = rho_i sum_j V_j [u_jump + (p_i - p_j)/(rho_bar c)] W'_ij
+    dv_i/dt   = -2/rho_i sum_j V_j P* W'_ij e_ij
+
+and the viscous acceleration is 001_ Eq. 7,
+2/rho_i sum_j V_j mu v_ij / (r_ij + 0.01 h) W'_ij.
+
+Walls are fixed dummy particles. A wall neighbour j takes the fluid
+particle's density, a pressure extrapolated hydrostatically,
+p_i + rho_i max(0, -g.r_ij), and a mirrored velocity 2 v_w - v_i (no-slip,
+kind WALL) or one with only the normal component mirrored (free-slip, kind
+WALL_SLIP). The viscous term uses v_i - v_w (no-slip) or its normal part
+(free-slip).
+"""
+
+import numpy as np
+from numba import njit
+
+from ..integrators import density_half, drift_half, kick
+from ..kernels import dw, w
+from ..particles import MOVING, WALL, Field
+
+RIEMANN_ETA = 3.0
+
+
+@njit(cache=True)
+def equation_of_state(n, kind, rho, p, rho0, c0):
+    """p = c0^2 (rho - rho0) for the moving particles in [0, n) (000_ Eq. 3)."""
+    for i in range(n):
+        if kind[i] == MOVING:
+            p[i] = c0 * c0 * (rho[i] - rho0)
+
+
+@njit(cache=True)
+def _wall_relative_normal(i, j, v, normal, dim):
+    """(v_i - v_w) . n_w for wall particle j."""
+    s = 0.0
+    for a in range(dim):
+        s += (v[i, a] - v[j, a]) * normal[j, a]
+    return s
+
+
+@njit(cache=True)
+def _u_jump(i, j, v, kind, normal, e, dim):
+    """(v_i - v_j) . e_ij with the wall's mirrored velocity when j is a wall."""
+    s = 0.0
+    if kind[j] == MOVING:
+        for a in range(dim):
+            s += (v[i, a] - v[j, a]) * e[a]
+        return s
+    if kind[j] == WALL:
+        for a in range(dim):
+            s += 2.0 * (v[i, a] - v[j, a]) * e[a]
+        return s
+    vn = _wall_relative_normal(i, j, v, normal, dim)
+    for a in range(dim):
+        s += 2.0 * vn * normal[j, a] * e[a]
+    return s
+
+
+@njit(cache=True)
+def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e):
+    """Distance, partner pressure, mean density and normal velocity jump of pair (i, j).
+
+    Fills ``e`` with e_ij; a wall partner takes the states described above.
+    """
+    dim = xc.shape[1]
+    r = 0.0
+    for a in range(dim):
+        e[a] = xc[i, a] - xc[j, a]
+        r += e[a] * e[a]
+    r = np.sqrt(r)
+    for a in range(dim):
+        e[a] /= r
+    if kind[j] == MOVING:
+        rho_j, p_j = rho[j], p[j]
+    else:
+        gr = 0.0
+        for a in range(dim):
+            gr -= gravity[a] * e[a] * r
+        rho_j, p_j = rho[i], p[i] + rho[i] * max(0.0, gr)
+    return r, p_j, 0.5 * (rho[i] + rho_j), _u_jump(i, j, v, kind, normal, e, dim)
+
+
+@njit(cache=True)
+def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
+                          c0, h, sigma, kernel, prior, dv_dt):
+    """dv/dt = prior - 2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
+    dim = xc.shape[1]
+    e = np.empty(dim)
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            dv_dt[i, a] = prior[i, a]
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e)
+            beta = min(RIEMANN_ETA * max(-u_jump / c0, 0.0), 1.0)
+            p_star = 0.5 * (p[i] + p_j) - 0.5 * beta * rho_bar * c0 * u_jump
+            f = -2.0 * mass[j] / rho[j] * p_star * dw(r, h, sigma, kernel) / rho[i]
+            for a in range(dim):
+                dv_dt[i, a] += f * e[a]
+
+
+@njit(cache=True)
+def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
+               c0, h, sigma, kernel, drho_dt):
+    """drho/dt = rho_i sum_j V_j [u_jump + (p_i - p_j)/(rho_bar c0)] W'_ij (000_ Eq. 16)."""
+    dim = xc.shape[1]
+    e = np.empty(dim)
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        acc = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e)
+            acc += mass[j] / rho[j] * (u_jump + (p[i] - p_j) / (rho_bar * c0)) * dw(r, h, sigma, kernel)
+        drho_dt[i] = rho[i] * acc
+
+
+@njit(cache=True)
+def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
+                       viscosity, h, sigma, kernel, prior):
+    """Gravity plus the viscous acceleration of 001_ Eq. 7, once per advection step."""
+    dim = xc.shape[1]
+    rij = np.empty(dim)
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            prior[i, a] = gravity[a]
+        if viscosity == 0.0:
+            continue
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = 0.0
+            for a in range(dim):
+                rij[a] = xc[i, a] - xc[j, a]
+                r += rij[a] * rij[a]
+            r = np.sqrt(r)
+            f = 2.0 * viscosity * mass[j] / rho[j] / rho[i] * dw(r, h, sigma, kernel) / (r + 0.01 * h)
+            if kind[j] == MOVING or kind[j] == WALL:
+                for a in range(dim):
+                    prior[i, a] += f * (v[i, a] - v[j, a])
+            else:
+                vn = _wall_relative_normal(i, j, v, normal, dim)
+                for a in range(dim):
+                    prior[i, a] += f * vn * normal[j, a]
+
+
+@njit(cache=True)
+def density_summation(n, start, nbr, xc, kind, rho, rho0, h, sigma, kernel, w_sum_ref, free_surface):
+    """Density reinitialisation rho_i = rho0 sum_j W_ij / sum_j W_ij^0 (001_ Eq. 8).
+
+    With ``free_surface`` the summed density only replaces the evolved one
+    where it is larger; below it the evolved excess is kept in proportion,
+    rho = rho_sum + max(0, rho* - rho_sum) rho0 / rho*, so that particles
+    with a truncated kernel near a free surface are not dragged below rho0.
+    """
+    dim = xc.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        acc = w(0.0, h, sigma, kernel)
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = 0.0
+            for a in range(dim):
+                d = xc[i, a] - xc[j, a]
+                r += d * d
+            acc += w(np.sqrt(r), h, sigma, kernel)
+        rho_sum = rho0 * acc / w_sum_ref
+        if free_surface:
+            rho[i] = rho_sum + max(0.0, rho[i] - rho_sum) * rho0 / rho[i]
+        else:
+            rho[i] = rho_sum
+
+
+def lattice_kernel_sum(dim, dp, h, sigma, kernel):
+    """sum_j W_ij (self included) over a full square/cubic lattice of spacing dp."""
+    m = int(np.ceil(2.0 * h / dp)) + 1
+    axis = np.arange(-m, m + 1) * dp
+    grids = np.meshgrid(*([axis] * dim), indexing="ij")
+    r = np.sqrt(sum(g.ravel() ** 2 for g in grids))
+    return float(sum(w(ri, h, sigma, kernel) for ri in r))
+
+
+class FluidScheme:
+    """The order of the fluid sub-steps; kernels above do the work.
+
+    Per advection step: optional density reinitialisation, then gravity and
+    viscosity as a prior acceleration. Per acoustic step (000_ Eqs. 39-41):
+    half drift with density, pressure from the EOS, ghost refresh of rho and
+    p, pressure acceleration and kick, ghost refresh of v, half drift, and
+    the density rate for the next half step.
+    """
+
+    fields = (
+        Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
+        Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
+        Field("prior", ("dim",), np.float64, "gravity + viscous acceleration [m/s^2]"),
+    )
+
+    def __init__(self, material, gravity, density_reinit, u_ref, w_sum_ref):
+        self.m = material
+        self.gravity = gravity
+        self.density_reinit = density_reinit
+        self.u_ref = u_ref
+        self.w_sum_ref = w_sum_ref
+
+    def initial_density(self, pressure):
+        """Density that gives ``pressure`` through the EOS."""
+        return self.m.rho0 + pressure / self.m.c0**2
+
+    def speeds(self):
+        """(sound speed, kinematic viscosity) for the time-step criteria."""
+        return self.m.c0, self.m.viscosity / self.m.rho0
+
+    def configure(self, s):
+        """Once per advection step, after the neighbour lists are built."""
+        pa, k = s.particles, s.kernel_args
+        n = pa.n_owned
+        if self.density_reinit != "none":
+            density_summation(n, s.start, s.nbr, s.xc, pa.kind, pa.rho, self.m.rho0, *k,
+                              self.w_sum_ref, self.density_reinit == "free_surface")
+            equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
+            s.halo.refresh(pa, ["rho", "p"])
+        prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
+                           self.gravity, self.m.viscosity, *k, pa.prior)
+
+    def acoustic_step(self, s, dt):
+        pa, k = s.particles, s.kernel_args
+        n = pa.n_owned
+        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, True)
+        equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
+        s.halo.refresh(pa, ["rho", "p"])
+        pressure_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind,
+                              pa.normal, self.gravity, self.m.c0, *k, pa.prior, pa.dv_dt)
+        kick(n, pa.kind, pa.v, pa.dv_dt, dt)
+        s.halo.refresh(pa, ["v"])
+        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
+        continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
+                   self.gravity, self.m.c0, *k, pa.drho_dt)
+        density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)

@@ -1,0 +1,56 @@
+"""Progress lines on rank 0: step, time, dt, particles, wall time, ETA, throughput."""
+
+import sys
+import time as wallclock
+
+import numpy as np
+from mpi4py import MPI
+
+from .particles import MOVING
+
+PRINT_EVERY = 2.0  # seconds of wall time between lines that are not at a frame
+
+
+class Progress:
+    def __init__(self, comm, quiet):
+        self.comm = comm
+        self.quiet = quiet
+        self.n_total = 0
+        self._last = -np.inf
+
+    def start(self, sim):
+        pa = sim.particles
+        self.n_total = self.comm.allreduce(int(np.count_nonzero(pa.owned("kind") == MOVING)))
+        self._say(f"mpisph: case {sim.params['case']}, {self.n_total} moving particles, "
+                  f"{self.comm.size} rank(s), t = {sim.t:g} s to {sim.params['t_end']:g} s, "
+                  f"frames in {sim.out_dir}")
+
+    def __call__(self, sim, wall, t0, step0, at_frame):
+        now = wallclock.perf_counter()
+        if not at_frame and now - self._last < PRINT_EVERY:
+            return
+        self._last = now
+        done = sim.t - t0
+        eta = wall * (sim.params["t_end"] - sim.t) / done if done > 0 else float("nan")
+        rate = self.n_total * (sim.step - step0) / wall if wall > 0 else 0.0
+        self._say(f"step {sim.step:8d}  t {sim.t:.5e} s  dt {sim.dt:.3e} s  N {self.n_total}  "
+                  f"wall {wall:8.1f} s  ETA {eta:8.1f} s  {rate:.3e} particle-steps/s"
+                  + (f"  frame {sim.frame_index}" if at_frame else ""))
+
+    def finish(self, sim, wall, step0):
+        """Closing lines: where the time went (slowest rank per phase) and the throughput."""
+        phases = sim.timer.summary(self.comm)
+        refresh = self.comm.allreduce(sim.halo.refresh_seconds, op=MPI.MAX)
+        phases["exchange"] += refresh
+        phases["physics"] = max(0.0, phases["physics"] - refresh)
+        steps = sim.step - step0
+        rate = self.n_total * steps / wall / self.comm.size if wall > 0 else 0.0
+        shares = "  ".join(f"{k} {100 * v / wall:.1f}%" for k, v in phases.items())
+        self._say(f"mpisph: done at t = {sim.t:g} s after {sim.step} steps")
+        self._say(f"timing: wall {wall:.2f} s  {shares}")
+        self._say(f"throughput: {rate:.4g} particle-steps/s/core on {self.comm.size} rank(s), "
+                  f"{self.n_total} particles, {steps} steps")
+
+    def _say(self, line):
+        if self.comm.rank == 0 and not self.quiet:
+            print(line, file=sys.stdout, flush=True)

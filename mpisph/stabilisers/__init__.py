@@ -1,0 +1,1 @@
+"""Corrections that keep particle distributions regular (transport velocity, ...)."""
