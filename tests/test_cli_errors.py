@@ -1,0 +1,136 @@
+"""Every bad input stops with one line on stderr, a non-zero exit, no traceback,
+and leaves existing output alone."""
+
+import os
+import shutil
+
+import pytest
+
+from mpirun import mpisph
+
+TINY = ["--set", "dp=0.2", "--t-end", "0.0004", "--output-interval", "0.0002", "--quiet"]
+
+
+def assert_clean_error(result, *fragments):
+    lines = [ln for ln in result.stderr.splitlines() if ln.strip()]
+    assert result.returncode != 0
+    assert "Traceback" not in result.stderr
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("mpisph: error: "), lines[0]
+    for f in fragments:
+        assert f in lines[0], lines[0]
+
+
+@pytest.fixture
+def existing_output(tmp_path):
+    """An output directory with a file in it that no bad run may touch."""
+    out = tmp_path / "out"
+    out.mkdir()
+    marker = out / "frame_00000.vtkhdf"
+    marker.write_bytes(b"earlier result")
+    return out, marker
+
+
+@pytest.mark.parametrize("args, fragments", [
+    (["no_such_case"], ["unknown case 'no_such_case'"]),
+    (["elliptical_drp"], ["did you mean 'elliptical_drop'"]),
+    (["elliptical_drop", "--set", "radiuss=2"], ["unknown parameter 'radiuss'", "did you mean 'radius'"]),
+    (["elliptical_drop", "--set", "dp=fine"], ["dp takes a float", "'fine'"]),
+    (["taylor_green", "--set", "nx=2.5"], ["nx takes a int"]),
+    (["elliptical_drop", "--set", "dp=-0.01"], ["dp must be positive"]),
+    (["elliptical_drop", "--set", "dp=0"], ["dp must be positive"]),
+    (["elliptical_drop", "--t-end", "0"], ["t_end must be positive"]),
+    (["elliptical_drop", "--t-end", "-1"], ["t_end must be positive"]),
+    (["elliptical_drop", "--set", "dp=3"], ["larger than the drop"]),
+    (["dam_break_2d", "--set", "dp=5"], ["larger than the water column"]),
+    (["elliptical_drop", "--set", "dp"], ["NAME=VALUE"]),
+])
+def test_bad_parameters(args, fragments, existing_output):
+    out, marker = existing_output
+    result = mpisph(args + ["--out", out, "--quiet"], timeout=120)
+    assert_clean_error(result, *fragments)
+    assert marker.read_bytes() == b"earlier result"
+    assert sorted(os.listdir(out)) == [marker.name]
+
+
+def test_body_outside_domain(tmp_path):
+    """A case whose body sticks out of its domain is refused before the run."""
+    case = tmp_path / "cases"
+    case.mkdir()
+    src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "elliptical_drop.py")).read()
+    (case / "drop_outside.py").write_text(src.replace('disk((0.0, 0.0)', 'disk((2.4, 0.0)'))
+    result = mpisph([case / "drop_outside.py", "--quiet", "--out", tmp_path / "o"], timeout=120)
+    assert_clean_error(result, "lies outside the domain")
+    assert not (tmp_path / "o").exists()
+
+
+def test_more_ranks_than_slabs(existing_output):
+    out, marker = existing_output
+    # dp = 1 gives a support of 2.6 m in a 5 m domain: two slabs
+    result = mpisph(["elliptical_drop", "--set", "dp=1.0", "--out", out, "--quiet"], ranks=3,
+                    timeout=120)
+    assert_clean_error(result, "3 ranks", "only 2 slabs")
+    assert marker.read_bytes() == b"earlier result"
+
+
+def test_unwritable_output_directory(tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a directory")
+    result = mpisph(["elliptical_drop", *TINY, "--out", blocker / "out"], ranks=2, timeout=120)
+    assert_clean_error(result, "cannot write output directory")
+
+
+@pytest.fixture(scope="module")
+def good_frame(tmp_path_factory):
+    out = tmp_path_factory.mktemp("good")
+    result = mpisph(["elliptical_drop", *TINY, "--out", out], timeout=300)
+    assert result.returncode == 0, result.stderr
+    return out / "frame_00001.vtkhdf"
+
+
+def test_restart_missing_file(tmp_path, existing_output):
+    out, marker = existing_output
+    result = mpisph(["elliptical_drop", "--restart", tmp_path / "nope.vtkhdf", "--out", out], timeout=120)
+    assert_clean_error(result, "no such file")
+    assert marker.read_bytes() == b"earlier result"
+
+
+def test_restart_truncated_file(tmp_path, good_frame, existing_output):
+    out, marker = existing_output
+    cut = tmp_path / "cut.vtkhdf"
+    data = good_frame.read_bytes()
+    cut.write_bytes(data[: len(data) // 2])
+    result = mpisph(["elliptical_drop", "--restart", cut, "--out", out], ranks=2, timeout=120)
+    assert_clean_error(result, "cut.vtkhdf")
+    assert marker.read_bytes() == b"earlier result"
+
+
+def test_restart_foreign_file(tmp_path, existing_output):
+    out, marker = existing_output
+    foreign = tmp_path / "foreign.vtkhdf"
+    foreign.write_text("this is not HDF5")
+    result = mpisph(["elliptical_drop", "--restart", foreign, "--out", out], timeout=120)
+    assert_clean_error(result, "not an HDF5 file")
+    assert marker.read_bytes() == b"earlier result"
+
+
+def test_restart_frame_of_another_case(good_frame, existing_output):
+    out, marker = existing_output
+    result = mpisph(["taylor_green", "--restart", good_frame, "--out", out], timeout=120)
+    assert_clean_error(result, "written by case 'elliptical_drop'")
+    assert marker.read_bytes() == b"earlier result"
+
+
+def test_blow_up_names_step_time_rank_particle(tmp_path):
+    """The drop stretches past the domain edge: the run stops and writes a last frame."""
+    out = tmp_path / "blow"
+    result = mpisph(["elliptical_drop", "--set", "dp=0.1", "--t-end", "0.04",
+                     "--output-interval", "0.01", "--out", out, "--quiet"], ranks=2, timeout=300)
+    assert result.returncode == 3
+    assert "Traceback" not in result.stderr
+    line = result.stderr.strip().splitlines()[-1]
+    for word in ("step", "t =", "rank", "particle", "left the domain"):
+        assert word in line, line
+    frames = sorted(p.name for p in out.glob("frame_*.vtkhdf"))
+    assert len(frames) >= 2  # the first frame and the last one at the blow-up
+    shutil.rmtree(out)

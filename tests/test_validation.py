@@ -1,0 +1,89 @@
+"""Fluid cases against their references (000_ Sec. 4.1-4.2, 001_ Sec. 4.1-4.2).
+
+Each test runs the case under mpirun and compares frames or diagnostics with
+the closed-form solution or the experiment, with the tolerance the engine
+issue states. Runs are bitwise identical on any rank count
+(test_rank_agreement.py), so the long ones use one rank to keep the suite
+short. docs/VALIDATION.md shows the same comparisons as plots
+(scripts/validate.py).
+"""
+
+import numpy as np
+import pytest
+
+from mpisph import measure, references
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpirun import mpisph
+
+
+def run(case, args, out, ranks=2, timeout=900):
+    r = mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks, timeout=timeout)
+    assert r.returncode == 0, r.stderr
+    return [read_frame(f) for f in list_frames(out)], read_diagnostics(out / "diagnostics.csv")
+
+
+def test_elliptical_drop_semi_axis(tmp_path):
+    """dp = 0.02 on 2 ranks: y semi-axis at t = 0.0076 s within 1.5 % of 1.944517; mass exact."""
+    frames, diag = run("elliptical_drop", ["--t-end", "0.0076", "--output-interval", "0.0038"], tmp_path)
+    last = frames[-1]
+    assert last["t"] == pytest.approx(0.0076)
+    _, b = measure.semi_axes(last, 0.02)
+    assert b == pytest.approx(1.944517, rel=0.015)
+    assert np.all(diag["mass"] == diag["mass"][0])
+    assert diag["mass"][0] == pytest.approx(np.sum(frames[0]["mass"]), rel=1e-14)
+
+
+def test_rotating_square_patch(tmp_path):
+    """Initial centre pressure within 1 % of Eq. 44; angular momentum drift <= 1 % at t omega = 2."""
+    frames, diag = run("rotating_square_patch", ["--t-end", "2.0", "--output-interval", "1.0"], tmp_path)
+    rho, omega, L = 1000.0, 1.0, 1.0
+    p_centre = measure.nearest_value(frames[0], "p", (0.0, 0.0))
+    assert p_centre / (rho * omega**2 * L**2) == pytest.approx(references.ROTATING_SQUARE_CENTRE_PRESSURE, rel=0.01)
+    ang = diag["angular_momentum_z"]
+    assert diag["t"][-1] == pytest.approx(2.0)
+    assert abs(ang[-1] / ang[0] - 1.0) <= 0.01
+    assert ang[0] == pytest.approx(-rho * omega * L**4 / 6, rel=0.01)
+
+
+def test_lid_driven_cavity_re100(tmp_path):
+    """dp = 1/50, Re = 100: RMS error of u and v on the centre lines against Ghia <= 0.03."""
+    frames, _ = run("lid_driven_cavity", ["--t-end", "10", "--output-interval", "5"], tmp_path, ranks=1)
+    last, h = frames[-1], 1.3 / 50
+    y, x = references.GHIA_Y[1:-1], references.GHIA_X[1:-1]
+    u = measure.line_average(last, np.stack([np.full_like(y, 0.5), y], 1), 0, h)
+    v = measure.line_average(last, np.stack([x, np.full_like(x, 0.5)], 1), 1, h)
+    assert np.sqrt(np.mean((u - references.GHIA_U[1:-1]) ** 2)) <= 0.03
+    assert np.sqrt(np.mean((v - references.GHIA_V[1:-1]) ** 2)) <= 0.03
+
+
+@pytest.fixture(scope="module")
+def dam_break_front(tmp_path_factory):
+    """(T, front z/L, Koshizuka & Oka at T) from one dam-break run, dp = 0.02 L."""
+    frames, _ = run("dam_break_2d", ["--t-end", "0.62", "--output-interval", "0.031"],
+                    tmp_path_factory.mktemp("dam_break"), ranks=1)
+    T = np.array([f["t"] for f in frames]) * np.sqrt(2 * 9.81)
+    z = np.array([measure.surge_front(f, 0.02) for f in frames])
+    return T, z, np.interp(T, references.KOSHIZUKA_T, references.KOSHIZUKA_Z)
+
+
+def test_dam_break_front_never_lags_the_experiment(dam_break_front):
+    """The surge front advances monotonically and never falls 10 % behind Koshizuka & Oka."""
+    T, z, ref = dam_break_front
+    assert np.all(np.diff(z) > 0)
+    assert np.all(z / ref >= 0.90)
+
+
+@pytest.mark.xfail(strict=True, reason="open gap: the SPH front runs up to 16 % ahead of Koshizuka & Oka "
+                                       "for 2 < T <= 2.7 (see docs/VALIDATION.md)")
+def test_dam_break_front_within_10_percent_to_T_2_7(dam_break_front):
+    T, z, ref = dam_break_front
+    assert T[-1] >= 2.7
+    assert np.all(np.abs(z / ref - 1) <= 0.10)
+
+
+def test_taylor_green_decay_rate(tmp_path):
+    """50 x 50, Re = 100: fitted decay rate of the kinetic energy over [0, 1] within 5 % of -1.5791."""
+    _, diag = run("taylor_green", ["--set", "diagnostics_every=1", "--t-end", "1.0"], tmp_path)
+    rate = measure.decay_rate(diag["t"], diag["kinetic_energy"])
+    assert rate == pytest.approx(references.taylor_green_energy_rate(100.0), rel=0.05)
