@@ -120,7 +120,8 @@ def run(args, comm):
     sim = Simulation(comm, case, values, particles, scheme, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim), append=frame is not None)
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim), append=frame is not None,
+                                  restart_time=t if frame is not None else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step
     try:
@@ -149,11 +150,11 @@ def main(argv=None):
         return 0
     except InputError as e:
         if comm.rank == 0:
-            print(f"mpisph: error: {e}", file=sys.stderr)
+            print(f"mpisph: error: {e}", file=sys.stderr, flush=True)
         return 2
     except BlowUp as e:
         if comm.rank == 0:
-            print(f"mpisph: {e}", file=sys.stderr)
+            print(f"mpisph: {e}", file=sys.stderr, flush=True)
         return 3
 
 

@@ -1,0 +1,287 @@
+"""Output frames: one VTKHDF PolyData file per frame, written collectively.
+
+A frame holds the whole global particle state.  Under ``/VTKHDF`` it follows
+the VTKHDF 2.0 PolyData layout (one partition, one vertex cell per particle),
+so ParaView and VTK's ``vtkHDFReader`` open it directly:
+
+* ``Points`` (N, 3) float64, z = 0 in 2D;
+* ``Vertices``: ``Connectivity`` = 0..N-1, ``Offsets`` = 0..N;
+  ``Lines``, ``Polygons`` and ``Strips`` are empty;
+* ``PointData/<name>`` for every field but ``x``: 2-component vectors padded
+  to 3, (3, 3) tensors flattened to 9; the attributes ``mpisph_shape`` and
+  ``mpisph_dtype`` record the original trailing shape and dtype;
+* ``FieldData/time`` and ``FieldData/step``.
+
+The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
+``format_version``, ``time``, ``step``, ``dim``, ``n_total``, ``params``
+(JSON) and, written last, ``complete`` = 1.  The file is written as
+``<path>.part`` and renamed once every rank has closed it.
+"""
+
+import glob
+import json
+import os
+
+import h5py
+import numpy as np
+from h5py import h5fd, h5p, h5s
+
+from mpisph.errors import InputError
+
+FRAME_PREFIX = "frame_"
+FRAME_SUFFIX = ".vtkhdf"
+FORMAT = "mpisph-frame"
+FORMAT_VERSION = 1
+VTKHDF_VERSION = (2, 0)
+REQUIRED = ("x", "gid", "kind")
+CELL_GROUPS = ("Vertices", "Lines", "Polygons", "Strips")
+
+
+def frame_path(out_dir, index):
+    """Path of frame number ``index`` in ``out_dir`` (``frame_00012.vtkhdf``)."""
+    return os.path.join(out_dir, f"{FRAME_PREFIX}{index:05d}{FRAME_SUFFIX}")
+
+
+def _check_fields(comm, fields, dim):
+    """Raise ValueError on every rank if any rank's ``fields`` are malformed.
+
+    All ranks must pass the same names, dtypes and trailing shapes, and every
+    array of a rank must have that rank's number of rows.
+    """
+    schema = [(k, np.asarray(a).dtype.str, np.shape(a)[1:])
+              for k, a in fields.items()]
+    rows = {np.shape(a)[0] if np.ndim(a) else -1 for a in fields.values()}
+    everyone = comm.allgather((schema, len(rows) == 1))
+    if any(s != schema for s, _ in everyone):
+        raise ValueError("write_frame: ranks pass different field names, "
+                         "dtypes or shapes")
+    if not all(ok for _, ok in everyone):
+        raise ValueError("write_frame: fields of one rank differ in length")
+    names = [k for k, _, _ in schema]
+    missing = [k for k in REQUIRED if k not in names]
+    if missing:
+        raise ValueError(f"write_frame: missing field(s) {missing}")
+    if dict((k, s) for k, _, s in schema)["x"] != (dim,):
+        raise ValueError(f"write_frame: x must have shape (n, {dim})")
+
+
+def _stored(a):
+    """Local array as stored in PointData: bool -> int8, 2 comps -> 3, 2-D."""
+    a = np.asarray(a)
+    if a.dtype == np.bool_:
+        a = a.astype(np.int8)
+    if a.ndim == 1:
+        return np.ascontiguousarray(a)
+    flat = a.reshape(a.shape[0], int(np.prod(a.shape[1:])))
+    width = 3 if flat.shape[1] == 2 else flat.shape[1]
+    out = np.zeros((a.shape[0], width), dtype=a.dtype)
+    out[:, :flat.shape[1]] = flat
+    return out
+
+
+def _put(dset, start, data, dxpl):
+    """Collectively write ``data`` to rows ``start:start+len(data)``.
+
+    Every rank must call this, also with zero rows: a rank with nothing to
+    write takes part with an empty selection (h5py's ``dset[...] = ...``
+    skips the HDF5 call for an empty selection, which would deadlock).
+    """
+    if dset.size == 0:
+        return
+    data = np.ascontiguousarray(data, dtype=dset.dtype)
+    fspace = dset.id.get_space()
+    if len(data):
+        mspace = h5s.create_simple(data.shape)
+        fspace.select_hyperslab((start,) + (0,) * (data.ndim - 1), data.shape)
+    else:
+        data = np.zeros((1,) + dset.shape[1:], dtype=dset.dtype)
+        mspace = h5s.create_simple(data.shape)
+        mspace.select_none()
+        fspace.select_none()
+    dset.id.write(mspace, fspace, data, dxpl=dxpl)
+
+
+def _write_cells(vtk, comm, n_total, off, n, dxpl):
+    """Vertices: one vertex cell per point; other cell groups empty."""
+    root = comm.rank == 0
+    for name in CELL_GROUPS:
+        cells = n_total if name == "Vertices" else 0
+        grp = vtk.create_group(name)
+        for count in ("NumberOfConnectivityIds", "NumberOfCells"):
+            d = grp.create_dataset(count, (1,), np.int64)
+            _put(d, 0, [cells] if root else [], dxpl)
+        conn = grp.create_dataset("Connectivity", (cells,), np.int64)
+        offs = grp.create_dataset("Offsets", (cells + 1,), np.int64)
+        if cells:
+            last = comm.rank == comm.size - 1
+            _put(conn, off, np.arange(off, off + n), dxpl)
+            _put(offs, off, np.arange(off, off + n + last), dxpl)
+        else:
+            _put(offs, 0, [0] if root else [], dxpl)
+
+
+def write_frame(path, comm, fields, *, time, step, dim, params):
+    """Write one frame collectively over ``comm``.
+
+    ``fields`` maps names to this rank's local arrays (owned particles only,
+    possibly zero rows); it must contain ``x`` (n, dim), ``gid`` and
+    ``kind``.  ``time``, ``step``, ``dim`` and ``params`` (JSON-able dict)
+    are taken from rank 0.
+    """
+    _check_fields(comm, fields, dim)
+    meta = comm.bcast((float(time), int(step), int(dim),
+                       json.dumps(params, sort_keys=True)), root=0)
+    time, step, dim, params_json = meta
+    n = len(fields["x"])
+    off = comm.exscan(n) or 0  # None on rank 0
+    n_total = comm.allreduce(n)
+    root = comm.rank == 0
+    dxpl = h5p.create(h5p.DATASET_XFER)
+    dxpl.set_dxpl_mpio(h5fd.MPIO_COLLECTIVE)
+    part = path + ".part"
+
+    with h5py.File(part, "w", driver="mpio", comm=comm) as f:
+        info = f.create_group("mpisph")
+        info.attrs["format"] = FORMAT
+        info.attrs["format_version"] = FORMAT_VERSION
+        info.attrs["time"] = np.float64(time)
+        for key, value in (("step", step), ("dim", dim), ("n_total", n_total)):
+            info.attrs[key] = np.int64(value)
+        info.attrs["params"] = params_json
+
+        vtk = f.create_group("VTKHDF")
+        vtk.attrs["Version"] = np.array(VTKHDF_VERSION, dtype=np.int64)
+        vtk.attrs["Type"] = np.bytes_("PolyData")  # fixed-length ASCII
+        _put(vtk.create_dataset("NumberOfPoints", (1,), np.int64), 0,
+             [n_total] if root else [], dxpl)
+        points = np.zeros((n, 3))
+        points[:, :dim] = fields["x"]
+        _put(vtk.create_dataset("Points", (n_total, 3), np.float64), off,
+             points, dxpl)
+        _write_cells(vtk, comm, n_total, off, n, dxpl)
+
+        pdata = vtk.create_group("PointData", track_order=True)
+        for name, a in fields.items():
+            if name == "x":
+                continue
+            a = np.asarray(a)
+            local = _stored(a)
+            d = pdata.create_dataset(name, (n_total,) + local.shape[1:],
+                                     local.dtype)
+            d.attrs["mpisph_shape"] = json.dumps(list(a.shape[1:]))
+            d.attrs["mpisph_dtype"] = a.dtype.str
+            _put(d, off, local, dxpl)
+
+        fdata = vtk.create_group("FieldData")
+        for name, value in (("time", np.float64(time)), ("step", np.int64(step))):
+            d = fdata.create_dataset(name, (1,), value.dtype)
+            _put(d, 0, [value] if root else [], dxpl)
+
+        f.flush()
+        info.attrs["complete"] = np.int64(1)
+
+    err = None
+    if root:
+        try:
+            os.replace(part, path)
+        except OSError as e:
+            err = f"cannot rename {part} to {path}: {e}"
+    err = comm.bcast(err, root=0)
+    if err:
+        raise OSError(err)
+
+
+def _open(path):
+    """Open a frame read-only without HDF5 file locking."""
+    return h5py.File(path, "r", locking=False)
+
+
+def _inspect(path):
+    """Return the reason ``path`` is not a readable frame, or None."""
+    if not os.path.exists(path):
+        return "no such file"
+    if not os.path.isfile(path):
+        return "not a regular file"
+    if not h5py.is_hdf5(path):
+        return "not an HDF5 file"
+    try:
+        with _open(path) as f:
+            info = f.get("mpisph")
+            if info is None or info.attrs.get("format") != FORMAT:
+                return "not an mpisph frame (format attribute missing)"
+            if "complete" not in info.attrs:
+                return "truncated or incomplete frame (no completion mark)"
+            version = int(info.attrs["format_version"])
+            if version > FORMAT_VERSION:
+                return f"frame format version {version} is newer than " \
+                       f"this mpisph ({FORMAT_VERSION})"
+            n_total = int(info.attrs["n_total"])
+            vtk = f["VTKHDF"]
+            lengths = {"NumberOfPoints": int(vtk["NumberOfPoints"][0]),
+                       "Points": len(vtk["Points"]),
+                       "Vertices/Connectivity":
+                           len(vtk["Vertices/Connectivity"])}
+            for name in REQUIRED[1:]:
+                if name not in vtk["PointData"]:
+                    return f"dataset PointData/{name} missing"
+            lengths.update({f"PointData/{k}": len(d)
+                            for k, d in vtk["PointData"].items()})
+    except (OSError, KeyError, ValueError) as e:
+        return f"unreadable or truncated HDF5 file ({e})"
+    bad = {k: v for k, v in lengths.items() if v != n_total}
+    if bad:
+        return f"inconsistent dataset lengths (n_total = {n_total}, " + \
+            ", ".join(f"{k} has {v}" for k, v in bad.items()) + ")"
+    return None
+
+
+def check_frame(path):
+    """Raise InputError with one line naming ``path`` and what is wrong."""
+    problem = _inspect(path)
+    if problem:
+        raise InputError(f"frame {path}: {problem}")
+
+
+def read_frame(path, walls=False):
+    """Read a frame serially; arrays of moving particles sorted by gid.
+
+    With ``walls=True`` all particles (sorted by gid) are returned.  Keys:
+    every stored field in its original shape and dtype (``x`` is (n, dim)),
+    plus ``t``, ``step``, ``dim`` and ``params``.
+    """
+    check_frame(path)
+    with _open(path) as f:
+        info = f["mpisph"].attrs
+        dim = int(info["dim"])
+        out = {"x": f["VTKHDF/Points"][:, :dim]}
+        for name, d in f["VTKHDF/PointData"].items():
+            shape = tuple(json.loads(d.attrs["mpisph_shape"]))
+            a = d[()]
+            if shape:
+                a = a[:, :int(np.prod(shape))].reshape((len(a),) + shape)
+            out[name] = a.astype(np.dtype(d.attrs["mpisph_dtype"]), copy=False)
+        meta = {"t": float(info["time"]), "step": int(info["step"]),
+                "dim": dim, "params": json.loads(info["params"])}
+    order = np.argsort(out["gid"], kind="stable")
+    if not walls:
+        order = order[out["kind"][order] == 0]
+    out = {k: np.ascontiguousarray(a[order]) for k, a in out.items()}
+    out.update(meta)
+    return out
+
+
+def _time_key(path):
+    """(time, step) of a frame, or None if it is not a complete frame."""
+    if _inspect(path):
+        return None
+    with _open(path) as f:
+        info = f["mpisph"].attrs
+        return float(info["time"]), int(info["step"])
+
+
+def list_frames(out_dir):
+    """Complete frames in ``out_dir`` ordered by stored time, then step."""
+    pattern = os.path.join(glob.escape(out_dir),
+                           f"{FRAME_PREFIX}*{FRAME_SUFFIX}")
+    keyed = [(_time_key(p), p) for p in glob.glob(pattern)]
+    return [p for k, p in sorted((k, p) for k, p in keyed if k is not None)]

@@ -1,0 +1,190 @@
+"""Serial tests of frame files (one MPI rank) and of the diagnostics CSV."""
+
+import shutil
+
+import h5py
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+from mpisph.errors import InputError
+from mpisph.io.diagnostics import Diagnostics, read_diagnostics
+from mpisph.io.frames import (check_frame, frame_path, list_frames,
+                              read_frame, write_frame)
+
+COMM = MPI.COMM_WORLD
+PARAMS = {"case": "dam_break", "h": 0.01, "n": 40, "periodic": [True, False]}
+
+
+def make_fields(dim, n=50, n_walls=10, seed=0):
+    """Shuffled particles with scalar, vector, tensor and integer fields."""
+    rng = np.random.default_rng(seed)
+    total = n + n_walls
+    kind = np.r_[np.zeros(n, np.int8), np.ones(n_walls, np.int8)]
+    perm = rng.permutation(total)
+    return {
+        "x": rng.random((total, dim)),
+        "v": rng.standard_normal((total, dim)),
+        "rho": 1000 + rng.random(total),
+        "p": rng.standard_normal(total),
+        "sigma": rng.standard_normal((total, 3, 3)),
+        "gid": (np.arange(total, dtype=np.int64) * 7)[perm],
+        "kind": kind[perm],
+        "flag": (rng.random(total) < 0.5).astype(np.int8),
+        "ncount": rng.integers(0, 100, total),
+        "active": rng.random(total) < 0.5,
+    }
+
+
+def write(path, fields, dim, time=0.5, step=10):
+    write_frame(str(path), COMM, fields, time=time, step=step, dim=dim,
+                params=PARAMS)
+
+
+def expected(fields, walls):
+    order = np.argsort(fields["gid"])
+    if not walls:
+        order = order[fields["kind"][order] == 0]
+    return {k: a[order] for k, a in fields.items()}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("walls", [False, True])
+def test_round_trip(tmp_path, dim, walls):
+    fields = make_fields(dim)
+    path = frame_path(tmp_path, 3)
+    write(path, fields, dim)
+    got = read_frame(path, walls=walls)
+    assert got["t"] == 0.5 and got["step"] == 10 and got["dim"] == dim
+    assert got["params"] == PARAMS
+    for key, want in expected(fields, walls).items():
+        assert got[key].dtype == want.dtype, key
+        assert got[key].shape == want.shape, key
+        assert got[key].tobytes() == want.tobytes(), key
+    assert set(got) == set(fields) | {"t", "step", "dim", "params"}
+
+
+def test_empty_frame(tmp_path):
+    fields = make_fields(2, n=0, n_walls=0)
+    path = frame_path(tmp_path, 0)
+    write(path, fields, 2)
+    got = read_frame(path, walls=True)
+    for key, want in fields.items():
+        assert got[key].shape == want.shape and got[key].dtype == want.dtype
+
+
+def test_vtkhdf_layout(tmp_path):
+    path = frame_path(tmp_path, 0)
+    write(path, make_fields(2, n=5, n_walls=0), 2)
+    with h5py.File(path, "r") as f:
+        vtk = f["VTKHDF"]
+        assert vtk.attrs["Type"] == b"PolyData"
+        assert vtk.attrs["Type"].dtype == np.dtype("S8")
+        assert list(vtk.attrs["Version"]) == [2, 0]
+        assert vtk["Points"].shape == (5, 3) and not vtk["Points"][:, 2].any()
+        assert list(vtk["Vertices/Offsets"]) == list(range(6))
+        assert list(vtk["Vertices/Connectivity"]) == list(range(5))
+        assert vtk["PointData/v"].shape == (5, 3)
+        assert vtk["PointData/sigma"].shape == (5, 9)
+        assert list(vtk["Lines/Offsets"]) == [0]
+        assert f["mpisph"].attrs["complete"] == 1
+
+
+def test_vtk_reader(tmp_path):
+    import vtk  # a declared test dependency: no skip
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    try:
+        reader = vtk.vtkHDFReader()
+    except AttributeError:
+        from vtkmodules.vtkIOHDF import vtkHDFReader
+        reader = vtkHDFReader()
+    fields = make_fields(3)
+    path = frame_path(tmp_path, 1)
+    write(path, fields, 3)
+    reader.SetFileName(path)
+    reader.Update()
+    out = reader.GetOutput()
+    n = len(fields["gid"])
+    assert out.GetNumberOfPoints() == n
+    assert out.GetNumberOfVerts() == n
+    pd = out.GetPointData()
+    assert np.array_equal(vtk_to_numpy(pd.GetArray("rho")), fields["rho"])
+    assert pd.GetArray("v").GetNumberOfComponents() == 3
+    assert np.array_equal(vtk_to_numpy(out.GetPoints().GetData()), fields["x"])
+
+
+def test_list_frames(tmp_path):
+    assert list_frames(tmp_path) == []
+    assert list_frames(tmp_path / "missing") == []
+    fields = make_fields(2, n=4, n_walls=1)
+    # File index order differs from time order on purpose.
+    for index, (time, step) in enumerate([(0.2, 20), (0.1, 10), (0.2, 15)]):
+        write(frame_path(tmp_path, index), fields, 2, time, step)
+    (tmp_path / "frame_00009.vtkhdf.part").write_bytes(b"partial")
+    assert list_frames(tmp_path) == [frame_path(tmp_path, i) for i in (1, 2, 0)]
+
+
+def check_fails(path, message):
+    with pytest.raises(InputError) as err:
+        check_frame(str(path))
+    text = str(err.value)
+    assert str(path) in text and message in text and "\n" not in text
+
+
+def test_check_missing_and_garbage(tmp_path):
+    check_fails(tmp_path / "nope.vtkhdf", "no such file")
+    garbage = tmp_path / "garbage.vtkhdf"
+    garbage.write_bytes(b"this is not hdf5 at all\n" * 100)
+    check_fails(garbage, "not an HDF5 file")
+
+
+def test_check_truncated(tmp_path):
+    path = frame_path(tmp_path, 0)
+    write(path, make_fields(3, n=2000), 3)
+    data = open(path, "rb").read()
+    cut = tmp_path / "cut.vtkhdf"
+    cut.write_bytes(data[:len(data) // 2])
+    check_fails(cut, "truncated")
+    with pytest.raises(InputError):
+        read_frame(str(cut))
+
+
+def test_check_incomplete_and_foreign(tmp_path):
+    path = frame_path(tmp_path, 0)
+    write(path, make_fields(2), 2)
+    incomplete = tmp_path / "incomplete.vtkhdf"
+    shutil.copy(path, incomplete)
+    with h5py.File(incomplete, "a") as f:
+        del f["mpisph"].attrs["complete"]
+    check_fails(incomplete, "no completion mark")
+    foreign = tmp_path / "foreign.h5"
+    with h5py.File(foreign, "w") as f:
+        f["data"] = np.arange(3)
+    check_fails(foreign, "not an mpisph frame")
+
+
+def test_check_inconsistent_lengths(tmp_path):
+    path = frame_path(tmp_path, 0)
+    write(path, make_fields(2), 2)
+    with h5py.File(path, "a") as f:
+        del f["VTKHDF/PointData/rho"]
+        f["VTKHDF/PointData/rho"] = np.zeros(3)
+    check_fails(path, "PointData/rho has 3")
+
+
+def test_diagnostics_serial(tmp_path):
+    cols = ["t", "step", "energy"]
+    with Diagnostics(tmp_path, COMM, cols) as diag:
+        for step in range(5):
+            diag.record({"t": step / 3, "step": step, "energy": np.pi * step})
+    d = read_diagnostics(tmp_path / "diagnostics.csv")
+    assert np.array_equal(d["t"], np.arange(5) / 3)
+    assert np.array_equal(d["energy"], np.pi * np.arange(5))
+    # Restart from t = 1/3: later rows are dropped, then the run continues.
+    with Diagnostics(tmp_path, COMM, cols, append=True,
+                     restart_time=1 / 3) as diag:
+        diag.record({"t": 0.5, "step": 2, "energy": 1.0})
+    d = read_diagnostics(tmp_path / "diagnostics.csv")
+    assert list(d["step"]) == [0, 1, 2] and d["t"][-1] == 0.5
+    with pytest.raises(InputError, match="columns differ"):
+        Diagnostics(tmp_path, COMM, ["t", "other"], append=True)
