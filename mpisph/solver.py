@@ -135,6 +135,7 @@ class Simulation:
         wall0, t0, step0 = wallclock.perf_counter(), self.t, self.step
         if self.step == 0:
             self.write_frame()
+            self.diagnostics.record(global_observables(self))
         while self.t < t_end:
             self._configure()
             vmax = self._max_speed()
