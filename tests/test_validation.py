@@ -30,8 +30,9 @@ def test_elliptical_drop_semi_axis(tmp_path):
     assert last["t"] == pytest.approx(0.0076)
     _, b = measure.semi_axes(last, 0.02)
     assert b == pytest.approx(1.944517, rel=0.015)
-    assert np.all(diag["mass"] == diag["mass"][0])
-    assert diag["mass"][0] == pytest.approx(np.sum(frames[0]["mass"]), rel=1e-14)
+    # every particle keeps its mass exactly; the total changes only by the order of summation
+    np.testing.assert_array_equal(last["mass"], frames[0]["mass"])
+    np.testing.assert_allclose(diag["mass"], np.sum(frames[0]["mass"]), rtol=1e-13)
 
 
 def test_rotating_square_patch(tmp_path):
