@@ -173,9 +173,10 @@ def load_case_module(name):
 
 
 def all_params(module):
-    """Case parameters followed by the run parameters (case values override defaults)."""
-    params = dict(RUN_PARAMS)
-    params.update(module.PARAMS)
+    """Case parameters followed by the run parameters the case does not set itself."""
+    params = dict(module.PARAMS)
+    for name, p in RUN_PARAMS.items():
+        params.setdefault(name, p)
     return params
 
 

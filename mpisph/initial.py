@@ -16,8 +16,8 @@ def make_scheme(case, params):
     """The fluid scheme with its reference kernel sum for density reinitialisation."""
     h = params["h_factor"] * case.dp
     kernel = KERNELS[params["kernel"]]
-    w_ref = lattice_kernel_sum(case.dim, case.dp, h, normalisation(kernel, h, case.dim), kernel)
-    return FluidScheme(case.material, case.gravity, case.density_reinit, case.u_ref, w_ref)
+    lattice_sum = lattice_kernel_sum(case.dim, case.dp, h, normalisation(kernel, h, case.dim), kernel)
+    return FluidScheme(case.material, case.gravity, case.density_reinit, case.u_ref, lattice_sum)
 
 
 def _share(comm, arrays, scheme, dim):

@@ -166,9 +166,13 @@ def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
 
 
 @njit(cache=True)
-def density_summation(n, start, nbr, xc, kind, rho, rho0, h, sigma, kernel, w_sum_ref, free_surface):
-    """Density reinitialisation rho_i = rho0 sum_j W_ij / sum_j W_ij^0 (001_ Eq. 8).
+def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, h, sigma, kernel, lattice_sum, free_surface):
+    """Density reinitialisation by kernel summation (001_ Eq. 8).
 
+    rho_i = sum_j m_j W_ij / (V0 sum_j W_ij^0), self term included, with V0 =
+    dp^d and sum W^0 the sum over a full lattice (``lattice_sum`` is their
+    product). With equal masses m = rho0 V0 this is Eq. 8, rho0 sum W / sum W^0;
+    weighting by mass keeps an initial pressure field (masses set from it).
     With ``free_surface`` the summed density only replaces the evolved one
     where it is larger; below it the evolved excess is kept in proportion,
     rho = rho_sum + max(0, rho* - rho_sum) rho0 / rho*, so that particles
@@ -178,15 +182,15 @@ def density_summation(n, start, nbr, xc, kind, rho, rho0, h, sigma, kernel, w_su
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        acc = w(0.0, h, sigma, kernel)
+        acc = mass[i] * w(0.0, h, sigma, kernel)
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             r = 0.0
             for a in range(dim):
                 d = xc[i, a] - xc[j, a]
                 r += d * d
-            acc += w(np.sqrt(r), h, sigma, kernel)
-        rho_sum = rho0 * acc / w_sum_ref
+            acc += mass[j] * w(np.sqrt(r), h, sigma, kernel)
+        rho_sum = acc / lattice_sum
         if free_surface:
             rho[i] = rho_sum + max(0.0, rho[i] - rho_sum) * rho0 / rho[i]
         else:
@@ -194,12 +198,12 @@ def density_summation(n, start, nbr, xc, kind, rho, rho0, h, sigma, kernel, w_su
 
 
 def lattice_kernel_sum(dim, dp, h, sigma, kernel):
-    """sum_j W_ij (self included) over a full square/cubic lattice of spacing dp."""
+    """V0 sum_j W_ij (self included) over a full square/cubic lattice of spacing dp, V0 = dp^d."""
     m = int(np.ceil(2.0 * h / dp)) + 1
     axis = np.arange(-m, m + 1) * dp
     grids = np.meshgrid(*([axis] * dim), indexing="ij")
     r = np.sqrt(sum(g.ravel() ** 2 for g in grids))
-    return float(sum(w(ri, h, sigma, kernel) for ri in r))
+    return dp**dim * float(sum(w(ri, h, sigma, kernel) for ri in r))
 
 
 class FluidScheme:
@@ -218,12 +222,12 @@ class FluidScheme:
         Field("prior", ("dim",), np.float64, "gravity + viscous acceleration [m/s^2]"),
     )
 
-    def __init__(self, material, gravity, density_reinit, u_ref, w_sum_ref):
+    def __init__(self, material, gravity, density_reinit, u_ref, lattice_sum):
         self.m = material
         self.gravity = gravity
         self.density_reinit = density_reinit
         self.u_ref = u_ref
-        self.w_sum_ref = w_sum_ref
+        self.lattice_sum = lattice_sum
 
     def initial_density(self, pressure):
         """Density that gives ``pressure`` through the EOS."""
@@ -238,8 +242,8 @@ class FluidScheme:
         pa, k = s.particles, s.kernel_args
         n = pa.n_owned
         if self.density_reinit != "none":
-            density_summation(n, s.start, s.nbr, s.xc, pa.kind, pa.rho, self.m.rho0, *k,
-                              self.w_sum_ref, self.density_reinit == "free_surface")
+            density_summation(n, s.start, s.nbr, s.xc, pa.kind, pa.mass, pa.rho, self.m.rho0, *k,
+                              self.lattice_sum, self.density_reinit == "free_surface")
             equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
             s.halo.refresh(pa, ["rho", "p"])
         prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
