@@ -1,0 +1,196 @@
+"""Run the fluid validation cases and write docs/VALIDATION.md with plots.
+
+    .venv/bin/python scripts/validate.py [--ranks 2] [--only NAME ...]
+
+Every figure in the page comes from a run made by this script; the command
+of each run is printed in the page beside its result.
+"""
+
+import argparse
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from mpisph import measure, references  # noqa: E402
+from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
+from mpisph.io.frames import list_frames, read_frame  # noqa: E402
+from mpisph.launch import mpirun_mpisph  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs"
+IMG = DOCS / "img"
+RUNS = ROOT / "runs" / "validation"
+
+
+def run(name, case, args, ranks):
+    out = RUNS / name
+    r = mpirun_mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks)
+    if r.returncode != 0:
+        raise SystemExit(r.stderr)
+    shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}"
+    frames = [read_frame(f) for f in list_frames(out)]
+    return frames, read_diagnostics(out / "diagnostics.csv"), shown
+
+
+def elliptical_drop(ranks):
+    frames, _, cmd = run("elliptical_drop", "elliptical_drop", ["--t-end", "0.008", "--output-interval", "0.0004"], ranks)
+    t = np.array([f["t"] for f in frames])
+    ab = np.array([measure.semi_axes(f, 0.02) for f in frames])
+    tt = np.linspace(0, 0.008, 81)
+    ref = references.elliptical_drop_axes(tt)
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    ax[0].plot(tt, ref[:, 0], "k-", label="analytic a")
+    ax[0].plot(tt, ref[:, 1], "k--", label="analytic 1/a")
+    ax[0].plot(t, ab[:, 0], "o", label="mpisph x semi-axis")
+    ax[0].plot(t, ab[:, 1], "s", label="mpisph y semi-axis")
+    ax[0].set_xlabel("t [s]")
+    ax[0].legend()
+    last = frames[-1]
+    sc = ax[1].scatter(last["x"][:, 0], last["x"][:, 1], c=last["p"], s=1)
+    ax[1].set_aspect("equal")
+    ax[1].set_title(f"t = {last['t']:.4f} s, pressure [Pa]")
+    fig.colorbar(sc, ax=ax[1])
+    fig.tight_layout()
+    fig.savefig(IMG / "elliptical_drop.png", dpi=90)
+    k = int(np.argmin(np.abs(t - 0.0076)))
+    b_ref = references.elliptical_drop_axes(t[k])[0]
+    rows = [("y semi-axis at t = 0.0076 s", f"{ab[k, 1]:.4f}", f"{b_ref[1]:.4f}", f"{100 * (ab[k, 1] / b_ref[1] - 1):+.2f}%", "1.5%"),
+            ("x semi-axis at t = 0.0076 s", f"{ab[k, 0]:.4f}", f"{b_ref[0]:.4f}", f"{100 * (ab[k, 0] / b_ref[0] - 1):+.2f}%", "-")]
+    return "Elliptical drop (dp = 0.02)", cmd, rows, "elliptical_drop.png"
+
+
+def taylor_green(ranks):
+    rows, curves = [], []
+    cmds = []
+    for nx in (50, 100):
+        _, diag, cmd = run(f"taylor_green_{nx}", "taylor_green", ["--set", f"nx={nx}", "diagnostics_every=1"], ranks)
+        cmds.append(cmd)
+        rate = measure.decay_rate(diag["t"], diag["kinetic_energy"])
+        ref = references.taylor_green_energy_rate(100.0)
+        rows.append((f"KE decay rate, {nx} x {nx}", f"{rate:.4f}", f"{ref:.4f}", f"{100 * (rate / ref - 1):+.1f}%", "5%"))
+        curves.append((nx, diag["t"], diag["kinetic_energy"] / 0.25))
+    fig, ax = plt.subplots(figsize=(6, 4))
+    t = np.linspace(0, 1, 50)
+    ax.semilogy(t, np.exp(references.taylor_green_energy_rate(100.0) * t), "k-", label="analytic")
+    for nx, tt, ke in curves:
+        ax.semilogy(tt, ke, label=f"mpisph {nx} x {nx}")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("KE / KE0")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(IMG / "taylor_green.png", dpi=90)
+    return "Taylor-Green vortex (Re = 100)", "; ".join(cmds), rows, "taylor_green.png"
+
+
+def dam_break(ranks):
+    frames, _, cmd = run("dam_break_2d", "dam_break_2d", ["--t-end", "0.7", "--output-interval", "0.035"], ranks)
+    T = np.array([f["t"] for f in frames]) * np.sqrt(2 * 9.81)
+    z = np.array([measure.surge_front(f, 0.02) for f in frames])
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+    ax[0].plot(references.KOSHIZUKA_T, references.KOSHIZUKA_Z, "ks", label="Koshizuka & Oka 1996")
+    ax[0].plot(T, z, "-o", ms=3, label="mpisph dp = 0.02 L")
+    ax[0].set_xlabel("T = t sqrt(2g/L)")
+    ax[0].set_ylabel("front z/L")
+    ax[0].legend()
+    k = int(np.argmin(np.abs(T - 2.0)))
+    f = frames[k]
+    sc = ax[1].scatter(f["x"][:, 0], f["x"][:, 1], c=f["p"], s=1)
+    ax[1].set_aspect("equal")
+    ax[1].set_title(f"T = {T[k]:.2f}, pressure [Pa]")
+    fig.colorbar(sc, ax=ax[1])
+    fig.tight_layout()
+    fig.savefig(IMG / "dam_break_2d.png", dpi=90)
+    rows = []
+    for Tk in references.KOSHIZUKA_T[1:]:
+        if Tk > T[-1]:
+            break
+        zk = np.interp(Tk, T, z)
+        ref = np.interp(Tk, references.KOSHIZUKA_T, references.KOSHIZUKA_Z)
+        rows.append((f"front at T = {Tk:.3f}", f"{zk:.3f}", f"{ref:.3f}", f"{100 * (zk / ref - 1):+.1f}%",
+                     "10%" if Tk <= 2.7 else "-"))
+    return "Dam break (Koshizuka & Oka)", cmd, rows, "dam_break_2d.png"
+
+
+def cavity(ranks):
+    frames, _, cmd = run("lid_driven_cavity", "lid_driven_cavity", ["--t-end", "20", "--output-interval", "5"], ranks)
+    last, h = frames[-1], 1.3 / 50
+    ys = np.linspace(0, 1, 101)
+    u = measure.line_average(last, np.stack([np.full_like(ys, 0.5), ys], 1), 0, h)
+    v = measure.line_average(last, np.stack([ys, np.full_like(ys, 0.5)], 1), 1, h)
+    gy, gx = references.GHIA_Y[1:-1], references.GHIA_X[1:-1]
+    ug = measure.line_average(last, np.stack([np.full_like(gy, 0.5), gy], 1), 0, h)
+    vg = measure.line_average(last, np.stack([gx, np.full_like(gx, 0.5)], 1), 1, h)
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    ax[0].plot(references.GHIA_U, references.GHIA_Y, "ks", label="Ghia et al. 1982")
+    ax[0].plot(u, ys, "-", label="mpisph")
+    ax[0].set_xlabel("u on x = 0.5")
+    ax[0].set_ylabel("y")
+    ax[0].legend()
+    ax[1].plot(references.GHIA_X, references.GHIA_V, "ks", label="Ghia et al. 1982")
+    ax[1].plot(ys, v, "-", label="mpisph")
+    ax[1].set_xlabel("x")
+    ax[1].set_ylabel("v on y = 0.5")
+    fig.tight_layout()
+    fig.savefig(IMG / "lid_driven_cavity.png", dpi=90)
+    rms_u = np.sqrt(np.mean((ug - references.GHIA_U[1:-1]) ** 2))
+    rms_v = np.sqrt(np.mean((vg - references.GHIA_V[1:-1]) ** 2))
+    rows = [("RMS error of u (t = 20 s)", f"{rms_u:.4f}", "0", "-", "0.03"),
+            ("RMS error of v (t = 20 s)", f"{rms_v:.4f}", "0", "-", "0.03")]
+    return "Lid-driven cavity (Re = 100, dp = 1/50)", cmd, rows, "lid_driven_cavity.png"
+
+
+def rotating_patch(ranks):
+    frames, diag, cmd = run("rotating_square_patch", "rotating_square_patch",
+                            ["--t-end", "2.04", "--output-interval", "0.12"], ranks)
+    p0 = measure.nearest_value(frames[0], "p", (0, 0)) / 1000.0
+    ang = diag["angular_momentum_z"]
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    ax[0].plot(diag["t"], ang / ang[0], label="L(t) / L(0)")
+    ax[0].plot(diag["t"], diag["kinetic_energy"] / diag["kinetic_energy"][0], label="KE(t) / KE(0)")
+    ax[0].set_xlabel("t omega")
+    ax[0].legend()
+    last = frames[-1]
+    sc = ax[1].scatter(last["x"][:, 0], last["x"][:, 1], c=last["p"], s=1)
+    ax[1].set_aspect("equal")
+    ax[1].set_title(f"t omega = {last['t']:.2f}, pressure [Pa]")
+    fig.colorbar(sc, ax=ax[1])
+    fig.tight_layout()
+    fig.savefig(IMG / "rotating_square_patch.png", dpi=90)
+    ref = references.ROTATING_SQUARE_CENTRE_PRESSURE
+    k = int(np.argmin(np.abs(diag["t"] - 2.0)))
+    rows = [("initial centre p / (rho omega^2 L^2)", f"{p0:.5f}", f"{ref:.6f}", f"{100 * (p0 / ref - 1):+.2f}%", "1%"),
+            ("angular momentum drift at t omega = 2", f"{100 * (ang[k] / ang[0] - 1):+.3f}%", "0", "-", "1%"),
+            ("kinetic energy change at t omega = 2",
+             f"{100 * (diag['kinetic_energy'][k] / diag['kinetic_energy'][0] - 1):+.2f}%", "0", "-", "-")]
+    return "Rotating square patch (dp = 0.02)", cmd, rows, "rotating_square_patch.png"
+
+
+VALIDATIONS = {"elliptical_drop": elliptical_drop, "taylor_green": taylor_green, "dam_break_2d": dam_break,
+               "lid_driven_cavity": cavity, "rotating_square_patch": rotating_patch}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--only", nargs="*", choices=list(VALIDATIONS))
+    a = ap.parse_args()
+    IMG.mkdir(parents=True, exist_ok=True)
+    sections = []
+    for name in a.only or VALIDATIONS:
+        title, cmd, rows, image = VALIDATIONS[name](a.ranks)
+        table = "\n".join(f"| {' | '.join(r)} |" for r in rows)
+        sections.append(f"## {title}\n\n`{cmd}`\n\n| quantity | mpisph | reference | error | tolerance |\n"
+                        f"|---|---|---|---|---|\n{table}\n\n![{title}](img/{image})\n")
+        print(f"{title}: done")
+    page = DOCS / "VALIDATION.md"
+    head = ("# Validation\n\nWritten by `python scripts/validate.py` (each case on "
+            f"{a.ranks} ranks); the tests in `tests/test_validation.py` assert the same comparisons.\n\n")
+    page.write_text(head + "\n".join(sections))
+
+
+if __name__ == "__main__":
+    main()
