@@ -3,29 +3,32 @@
 import numpy as np
 
 
-def elliptical_drop_axes(t, A0=100.0, steps=20000):
+def elliptical_drop_axes(t, A0=100.0, dt_max=1e-7):
     """Semi-axes (a, 1/a) of the stretched drop (Monaghan 1994; 000_ Sec. 4.1).
 
     dA/dt = A^2 (a^4 - 1)/(a^4 + 1), da/dt = -a A, A(0) = A0, a(0) = 1,
-    integrated with classical Runge-Kutta; ``t`` may be an array.
+    integrated with classical Runge-Kutta in steps of at most ``dt_max``;
+    ``t`` may be an array (any order). Returns an array (len(t), 2).
     """
-    def rate(state):
-        A, a = state
+    def rate(A, a):
         a4 = a**4
-        return np.array([A * A * (a4 - 1.0) / (a4 + 1.0), -a * A])
+        return A * A * (a4 - 1.0) / (a4 + 1.0), -a * A
 
     t = np.atleast_1d(np.asarray(t, dtype=float))
     out = np.empty((len(t), 2))
-    for k, tk in enumerate(t):
-        state = np.array([A0, 1.0])
-        dt = tk / steps
-        for _ in range(steps if tk > 0 else 0):
-            k1 = rate(state)
-            k2 = rate(state + 0.5 * dt * k1)
-            k3 = rate(state + 0.5 * dt * k2)
-            k4 = rate(state + dt * k3)
-            state = state + dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-        out[k] = state[1], 1.0 / state[1]
+    A, a, now = A0, 1.0, 0.0
+    for k in np.argsort(t):
+        steps = int(np.ceil((t[k] - now) / dt_max))
+        h = (t[k] - now) / steps if steps else 0.0
+        for _ in range(steps):
+            k1 = rate(A, a)
+            k2 = rate(A + 0.5 * h * k1[0], a + 0.5 * h * k1[1])
+            k3 = rate(A + 0.5 * h * k2[0], a + 0.5 * h * k2[1])
+            k4 = rate(A + h * k3[0], a + h * k3[1])
+            A += h / 6.0 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+            a += h / 6.0 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+        now = t[k]
+        out[k] = a, 1.0 / a
     return out
 
 

@@ -36,6 +36,20 @@ def run(name, case, args, ranks):
     return frames, read_diagnostics(out / "diagnostics.csv"), shown
 
 
+def pressure_panel(fig, ax, frame, title):
+    """Particles of ``frame`` coloured by pressure."""
+    sc = ax.scatter(frame["x"][:, 0], frame["x"][:, 1], c=frame["p"], s=1)
+    ax.set_aspect("equal")
+    ax.set_title(f"{title}, pressure [Pa]")
+    fig.colorbar(sc, ax=ax)
+
+
+def save(fig, image):
+    fig.tight_layout()
+    fig.savefig(IMG / image, dpi=90)
+    return image
+
+
 def elliptical_drop(ranks):
     frames, _, cmd = run("elliptical_drop", "elliptical_drop", ["--t-end", "0.008", "--output-interval", "0.0004"], ranks)
     t = np.array([f["t"] for f in frames])
@@ -49,18 +63,13 @@ def elliptical_drop(ranks):
     ax[0].plot(t, ab[:, 1], "s", label="mpisph y semi-axis")
     ax[0].set_xlabel("t [s]")
     ax[0].legend()
-    last = frames[-1]
-    sc = ax[1].scatter(last["x"][:, 0], last["x"][:, 1], c=last["p"], s=1)
-    ax[1].set_aspect("equal")
-    ax[1].set_title(f"t = {last['t']:.4f} s, pressure [Pa]")
-    fig.colorbar(sc, ax=ax[1])
-    fig.tight_layout()
-    fig.savefig(IMG / "elliptical_drop.png", dpi=90)
+    pressure_panel(fig, ax[1], frames[-1], f"t = {frames[-1]['t']:.4f} s")
+    image = save(fig, "elliptical_drop.png")
     k = int(np.argmin(np.abs(t - 0.0076)))
     b_ref = references.elliptical_drop_axes(t[k])[0]
     rows = [("y semi-axis at t = 0.0076 s", f"{ab[k, 1]:.4f}", f"{b_ref[1]:.4f}", f"{100 * (ab[k, 1] / b_ref[1] - 1):+.2f}%", "1.5%"),
             ("x semi-axis at t = 0.0076 s", f"{ab[k, 0]:.4f}", f"{b_ref[0]:.4f}", f"{100 * (ab[k, 0] / b_ref[0] - 1):+.2f}%", "-")]
-    return "Elliptical drop (dp = 0.02)", cmd, rows, "elliptical_drop.png"
+    return "Elliptical drop (dp = 0.02)", cmd, rows, image
 
 
 def taylor_green(ranks):
@@ -81,9 +90,7 @@ def taylor_green(ranks):
     ax.set_xlabel("t [s]")
     ax.set_ylabel("KE / KE0")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(IMG / "taylor_green.png", dpi=90)
-    return "Taylor-Green vortex (Re = 100)", "; ".join(cmds), rows, "taylor_green.png"
+    return "Taylor-Green vortex (Re = 100)", "; ".join(cmds), rows, save(fig, "taylor_green.png")
 
 
 def dam_break(ranks):
@@ -97,13 +104,8 @@ def dam_break(ranks):
     ax[0].set_ylabel("front z/L")
     ax[0].legend()
     k = int(np.argmin(np.abs(T - 2.0)))
-    f = frames[k]
-    sc = ax[1].scatter(f["x"][:, 0], f["x"][:, 1], c=f["p"], s=1)
-    ax[1].set_aspect("equal")
-    ax[1].set_title(f"T = {T[k]:.2f}, pressure [Pa]")
-    fig.colorbar(sc, ax=ax[1])
-    fig.tight_layout()
-    fig.savefig(IMG / "dam_break_2d.png", dpi=90)
+    pressure_panel(fig, ax[1], frames[k], f"T = {T[k]:.2f}")
+    image = save(fig, "dam_break_2d.png")
     rows = []
     for Tk in references.KOSHIZUKA_T[1:]:
         if Tk > T[-1]:
@@ -112,7 +114,7 @@ def dam_break(ranks):
         ref = np.interp(Tk, references.KOSHIZUKA_T, references.KOSHIZUKA_Z)
         rows.append((f"front at T = {Tk:.3f}", f"{zk:.3f}", f"{ref:.3f}", f"{100 * (zk / ref - 1):+.1f}%",
                      "10%" if Tk <= 2.7 else "-"))
-    return "Dam break (Koshizuka & Oka)", cmd, rows, "dam_break_2d.png"
+    return "Dam break (Koshizuka & Oka)", cmd, rows, image
 
 
 def cavity(ranks):
@@ -134,13 +136,12 @@ def cavity(ranks):
     ax[1].plot(ys, v, "-", label="mpisph")
     ax[1].set_xlabel("x")
     ax[1].set_ylabel("v on y = 0.5")
-    fig.tight_layout()
-    fig.savefig(IMG / "lid_driven_cavity.png", dpi=90)
+    image = save(fig, "lid_driven_cavity.png")
     rms_u = np.sqrt(np.mean((ug - references.GHIA_U[1:-1]) ** 2))
     rms_v = np.sqrt(np.mean((vg - references.GHIA_V[1:-1]) ** 2))
     rows = [("RMS error of u (t = 20 s)", f"{rms_u:.4f}", "0", "-", "0.03"),
             ("RMS error of v (t = 20 s)", f"{rms_v:.4f}", "0", "-", "0.03")]
-    return "Lid-driven cavity (Re = 100, dp = 1/50)", cmd, rows, "lid_driven_cavity.png"
+    return "Lid-driven cavity (Re = 100, dp = 1/50)", cmd, rows, image
 
 
 def rotating_patch(ranks):
@@ -153,20 +154,15 @@ def rotating_patch(ranks):
     ax[0].plot(diag["t"], diag["kinetic_energy"] / diag["kinetic_energy"][0], label="KE(t) / KE(0)")
     ax[0].set_xlabel("t omega")
     ax[0].legend()
-    last = frames[-1]
-    sc = ax[1].scatter(last["x"][:, 0], last["x"][:, 1], c=last["p"], s=1)
-    ax[1].set_aspect("equal")
-    ax[1].set_title(f"t omega = {last['t']:.2f}, pressure [Pa]")
-    fig.colorbar(sc, ax=ax[1])
-    fig.tight_layout()
-    fig.savefig(IMG / "rotating_square_patch.png", dpi=90)
+    pressure_panel(fig, ax[1], frames[-1], f"t omega = {frames[-1]['t']:.2f}")
+    image = save(fig, "rotating_square_patch.png")
     ref = references.ROTATING_SQUARE_CENTRE_PRESSURE
     k = int(np.argmin(np.abs(diag["t"] - 2.0)))
     rows = [("initial centre p / (rho omega^2 L^2)", f"{p0:.5f}", f"{ref:.6f}", f"{100 * (p0 / ref - 1):+.2f}%", "1%"),
             ("angular momentum drift at t omega = 2", f"{100 * (ang[k] / ang[0] - 1):+.3f}%", "0", "-", "1%"),
             ("kinetic energy change at t omega = 2",
              f"{100 * (diag['kinetic_energy'][k] / diag['kinetic_energy'][0] - 1):+.2f}%", "0", "-", "-")]
-    return "Rotating square patch (dp = 0.02)", cmd, rows, "rotating_square_patch.png"
+    return "Rotating square patch (dp = 0.02)", cmd, rows, image
 
 
 VALIDATIONS = {"elliptical_drop": elliptical_drop, "taylor_green": taylor_green, "dam_break_2d": dam_break,
