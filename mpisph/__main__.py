@@ -1,4 +1,4 @@
-"""Command line: python -m mpisph CASE [options] | list | info CASE.
+"""Command line: python -m mpisph CASE [options] | list | info CASE | report FRAME...
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
 ``mpisph: error: ...`` on stderr and status 2 before anything is written; a
@@ -16,7 +16,8 @@ from .errors import BlowUp, InputError
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
          "       python -m mpisph list\n"
-         "       python -m mpisph info CASE")
+         "       python -m mpisph info CASE\n"
+         "       python -m mpisph report FRAME [FRAME ...]")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -69,6 +70,24 @@ def cmd_info(name):
     for key, p in params.items():
         extra = f" (one of {', '.join(p.choices)})" if p.choices else ""
         print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
+
+
+def cmd_report(paths):
+    """Tensile-instability measure of each frame (see mpisph.instability)."""
+    from .case import build_case, load_case_module
+    from .instability import tensile_instability
+    from .io.frames import check_frame, read_frame
+    for path in paths:
+        check_frame(path)
+    for path in paths:
+        frame = read_frame(path, walls=True)
+        params = frame["params"]
+        case = build_case(load_case_module(params["case"]), params)
+        lo, hi = case.domain
+        periods = [hi[a] - lo[a] if case.periodic[a] else 0.0 for a in range(case.dim)]
+        m = tensile_instability(frame, lo, periods)
+        print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%, "
+              f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%")
 
 
 def _prepare_out_dir(comm, path):
@@ -145,6 +164,12 @@ def main(argv=None):
                 raise InputError("usage: python -m mpisph info CASE")
             if comm.rank == 0:
                 cmd_info(argv[1])
+            return 0
+        if argv[:1] == ["report"]:
+            if len(argv) < 2:
+                raise InputError("usage: python -m mpisph report FRAME [FRAME ...]")
+            if comm.rank == 0:
+                cmd_report(argv[1:])
             return 0
         run(_parser().parse_args(argv), comm)
         return 0
