@@ -75,8 +75,9 @@ def test_dam_break_front_never_lags_the_experiment(dam_break_front):
     assert np.all(z / ref >= 0.90)
 
 
-@pytest.mark.xfail(strict=True, reason="open gap: the SPH front runs up to 16 % ahead of Koshizuka & Oka "
-                                       "for 2 < T <= 2.7 (see docs/VALIDATION.md)")
+@pytest.mark.xfail(strict=True, reason="open gap in the reference: the front runs up to 16 % ahead of "
+                                       "Koshizuka & Oka for 2 < T <= 2.7, whose late front speed is 27 % "
+                                       "below Martin & Moyce's (see docs/VALIDATION.md)")
 def test_dam_break_front_within_10_percent_to_T_2_7(dam_break_front):
     T, z, ref = dam_break_front
     assert T[-1] >= 2.7
