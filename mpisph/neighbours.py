@@ -23,6 +23,16 @@ def neighbour_lists(x, gid, kind, n_owned, radius, origin):
 
 
 @njit(cache=True)
+def pair_distance(x, i, j):
+    """|x_i - x_j|."""
+    r2 = 0.0
+    for a in range(x.shape[1]):
+        d = x[i, a] - x[j, a]
+        r2 += d * d
+    return np.sqrt(r2)
+
+
+@njit(cache=True)
 def _cells(x, radius, origin):
     n, dim = x.shape
     c = np.empty((n, 3), dtype=np.int64)

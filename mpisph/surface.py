@@ -6,10 +6,10 @@ kernel support is truncated; particles with div r < 0.75 d are on the free
 surface (000_ Sec. 3.3).
 """
 
-import numpy as np
 from numba import njit
 
 from .kernels import dw
+from .neighbours import pair_distance
 from .particles import MOVING
 
 SURFACE_THRESHOLD = 0.75  # times the dimension
@@ -18,17 +18,12 @@ SURFACE_THRESHOLD = 0.75  # times the dimension
 @njit(cache=True)
 def position_divergence(n, start, nbr, x, mass, rho, kind, h, sigma, kernel, out):
     """out_i = -sum_j V_j r_ij . grad_i W_ij for the moving particles in [0, n)."""
-    dim = x.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
             continue
         acc = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = 0.0
-            for a in range(dim):
-                d = x[i, a] - x[j, a]
-                r += d * d
-            r = np.sqrt(r)
+            r = pair_distance(x, i, j)
             acc -= mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
         out[i] = acc

@@ -33,6 +33,7 @@ from numba import njit
 
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw, w
+from ..neighbours import pair_distance
 from ..particles import MOVING, WALL, Field
 
 RIEMANN_ETA = 3.0
@@ -140,7 +141,6 @@ def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
                        viscosity, h, sigma, kernel, prior):
     """Gravity plus the viscous acceleration of 001_ Eq. 7, once per advection step."""
     dim = xc.shape[1]
-    rij = np.empty(dim)
     for i in range(n):
         if kind[i] != MOVING:
             continue
@@ -150,11 +150,7 @@ def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
             continue
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = 0.0
-            for a in range(dim):
-                rij[a] = xc[i, a] - xc[j, a]
-                r += rij[a] * rij[a]
-            r = np.sqrt(r)
+            r = pair_distance(xc, i, j)
             f = 2.0 * viscosity * mass[j] / rho[j] / rho[i] * dw(r, h, sigma, kernel) / (r + 0.01 * h)
             if kind[j] == MOVING or kind[j] == WALL:
                 for a in range(dim):
@@ -178,18 +174,13 @@ def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, h, sigma, kernel
     rho = rho_sum + max(0, rho* - rho_sum) rho0 / rho*, so that particles
     with a truncated kernel near a free surface are not dragged below rho0.
     """
-    dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
             continue
         acc = mass[i] * w(0.0, h, sigma, kernel)
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = 0.0
-            for a in range(dim):
-                d = xc[i, a] - xc[j, a]
-                r += d * d
-            acc += mass[j] * w(np.sqrt(r), h, sigma, kernel)
+            acc += mass[j] * w(pair_distance(xc, i, j), h, sigma, kernel)
         rho_sum = acc / lattice_sum
         if free_surface:
             rho[i] = rho_sum + max(0.0, rho[i] - rho_sum) * rho0 / rho[i]
