@@ -104,21 +104,21 @@ class Particles:
             a[start:start + n] = rows[:, col:col + w].reshape((n,) + a.shape[1:])
             col += w
 
-    def resize(self, n_owned, n_ghost):
-        """Set new owned and ghost counts, keeping the first ``n_owned`` owned rows."""
-        keep = min(n_owned, self.n_owned)
+    def set_ghost_count(self, n_ghost):
+        """Keep the owned rows and make room for ``n_ghost`` ghost rows after them."""
+        n = self.n_owned
         for f in self.fields:
             old = self.arrays[f.name]
-            new = np.zeros((n_owned + n_ghost,) + old.shape[1:], dtype=old.dtype)
-            new[:keep] = old[:keep]
+            new = np.empty((n + n_ghost,) + old.shape[1:], dtype=old.dtype)
+            new[:n] = old[:n]
             self.arrays[f.name] = new
-        self.n_owned = n_owned
 
-    def select_owned(self, index):
-        """Keep only the owned particles ``index`` (drops all ghosts)."""
+    def reset(self, n_owned):
+        """Make room for ``n_owned`` new owned rows and no ghosts; the old rows are dropped."""
         for f in self.fields:
-            self.arrays[f.name] = np.ascontiguousarray(self.arrays[f.name][index])
-        self.n_owned = len(index)
+            old = self.arrays[f.name]
+            self.arrays[f.name] = np.empty((n_owned,) + old.shape[1:], dtype=old.dtype)
+        self.n_owned = n_owned
 
     def owned(self, name):
         return self.arrays[name][: self.n_owned]

@@ -88,7 +88,7 @@ def migrate(particles, decomp):
     recv_counts = exchange_counts(comm, send_counts)
     names = [f.name for f in particles.fields]
     rows = alltoallv_rows(comm, particles.pack(names, order), send_counts, recv_counts)
-    particles.resize(len(rows), 0)
+    particles.reset(len(rows))
     particles.unpack_into(names, rows, 0)
 
 

@@ -80,7 +80,7 @@ class Halo:
         rows = particles.pack(names, index)
         rows[:, _column(particles, names, "x")] += shift
         ghosts = alltoallv_rows(comm, rows, send_counts, recv_counts)
-        particles.resize(particles.n_owned, len(ghosts))
+        particles.set_ghost_count(len(ghosts))
         particles.unpack_into(names, ghosts, particles.n_owned)
 
     def refresh(self, particles, names):
