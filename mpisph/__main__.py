@@ -133,13 +133,13 @@ def run(args, comm):
     if frame is None:
         particles, t, step = particles_from_case(comm, case, scheme), 0.0, 0
     else:
-        particles, t, step = particles_from_frame(comm, frame, scheme), frame["t"], frame["step"]
+        particles, t, step = particles_from_frame(comm, frame, scheme, case.stabiliser), frame["t"], frame["step"]
     out_dir = args.out or os.path.join("runs", args.case)
     progress = Progress(comm, quiet=args.quiet)
     sim = Simulation(comm, case, values, particles, scheme, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim), append=frame is not None,
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, scheme, case.probes), append=frame is not None,
                                   restart_time=t if frame is not None else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step

@@ -16,6 +16,7 @@ import numpy as np
 
 from .errors import InputError
 from .kernels import KERNELS
+from .materials import DruckerPrager, ElasticSolid, Fluid  # noqa: F401  (case files import them from here)
 from .stabilisers.transport_velocity import STABILISERS
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
@@ -77,15 +78,6 @@ RUN_PARAMS = {
 
 
 @dataclass
-class Fluid:
-    """Weakly compressible fluid (000_ Eq. 3, 001_ Eqs. 1-7)."""
-
-    rho0: float
-    c0: float
-    viscosity: float = 0.0  # dynamic viscosity [Pa s]
-
-
-@dataclass
 class Body:
     """Moving particles of one material with their initial state."""
 
@@ -93,6 +85,8 @@ class Body:
     x: np.ndarray
     velocity: np.ndarray | None = None  # (n, dim)
     pressure: np.ndarray | None = None  # (n,)
+    stress: np.ndarray | None = None  # (n, 3, 3) initial Cauchy stress, solids only
+    clamped: np.ndarray | None = None  # (n,) bool: held in place (solids only)
 
 
 @dataclass
@@ -113,20 +107,29 @@ class Case:
     dim: int
     domain: tuple  # (lo, hi) corners; a particle leaving it stops the run
     dp: float
-    material: Fluid
+    material: object  # Fluid, ElasticSolid or DruckerPrager
     bodies: list
     walls: list = field(default_factory=list)
     gravity: tuple | None = None
     periodic: tuple | None = None
     slab_axis: int = 0
     density_reinit: str = "none"  # none | inner | free_surface
-    stabiliser: str = "none"  # none | tvf_limited
+    stabiliser: str = "none"  # see mpisph.stabilisers.transport_velocity.STABILISERS
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
+    probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
 
     def __post_init__(self):
         self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
+
+    def initial_position(self, gid):
+        """Initial position of the moving or clamped particle with global id ``gid``."""
+        for b in self.bodies:
+            if gid < len(b.x):
+                return np.asarray(b.x[gid], float)
+            gid -= len(b.x)
+        raise KeyError(gid)
 
     def validate(self, support):
         """Raise InputError for a case that cannot run."""

@@ -7,22 +7,41 @@ its position. Global ids follow the order of the case's bodies, then walls.
 
 import numpy as np
 
+from . import surface
 from .kernels import KERNELS, normalisation
-from .particles import CORE_FIELDS, MOVING, WALL, WALL_SLIP, Particles
+from .materials import DruckerPrager, ElasticSolid, Fluid
+from .particles import CLAMPED, CORE_FIELDS, MOVING, WALL, WALL_SLIP, Particles
+from .physics.drucker_prager import DruckerPragerModel
+from .physics.elastic import ElasticModel
 from .physics.fluid import FluidScheme, lattice_kernel_sum
+from .physics.solid import SolidScheme
+from .stabilisers.transport_velocity import STABILISERS
 
 
 def make_scheme(case, params):
-    """The fluid scheme with its reference kernel sum for density reinitialisation."""
+    """The scheme of the case's material."""
+    m = case.material
+    if isinstance(m, DruckerPrager):
+        return SolidScheme(DruckerPragerModel(m, case.dim, case.gravity), case.gravity, case.u_ref)
+    if isinstance(m, ElasticSolid):
+        return SolidScheme(ElasticModel(m), case.gravity, case.u_ref)
+    assert isinstance(m, Fluid)
     h = params["h_factor"] * case.dp
     kernel = KERNELS[params["kernel"]]
     lattice_sum = lattice_kernel_sum(case.dim, case.dp, h, normalisation(kernel, h, case.dim), kernel)
-    return FluidScheme(case.material, case.gravity, case.density_reinit, case.u_ref, lattice_sum)
+    return FluidScheme(m, case.gravity, case.density_reinit, case.u_ref, lattice_sum)
 
 
-def _share(comm, arrays, scheme, dim):
-    """This rank's strided share of the global ``arrays`` as Particles."""
+def particle_fields(scheme, stabiliser):
+    """Core fields, the scheme's, and the surface fields if the scheme or the stabiliser needs them."""
     fields = CORE_FIELDS + scheme.fields
+    if getattr(scheme, "needs_surface", False) or STABILISERS[stabiliser].needs_surface:
+        fields += surface.FIELDS
+    return fields
+
+
+def _share(comm, arrays, fields, dim):
+    """This rank's strided share of the global ``arrays`` as Particles."""
     n_global = len(arrays["gid"])
     mine = np.arange(comm.rank, n_global, comm.size)
     pa = Particles.empty(dim, fields, len(mine))
@@ -35,13 +54,22 @@ def _share(comm, arrays, scheme, dim):
 def particles_from_case(comm, case, scheme):
     dim, dp = case.dim, case.dp
     m = case.material
-    xs, kinds, vs, ps, normals = [], [], [], [], []
+    xs, kinds, vs, ps, normals, stresses = [], [], [], [], [], []
     for b in case.bodies:
         n = len(b.x)
         xs.append(b.x)
-        kinds.append(np.full(n, MOVING, np.int8))
+        kind = np.full(n, MOVING, np.int8)
+        if b.clamped is not None:
+            kind[b.clamped] = CLAMPED
+        kinds.append(kind)
         vs.append(np.zeros((n, dim)) if b.velocity is None else b.velocity)
-        ps.append(np.zeros(n) if b.pressure is None else b.pressure)
+        stresses.append(np.zeros((n, 3, 3)) if b.stress is None else b.stress)
+        if b.pressure is not None:
+            ps.append(b.pressure)
+        elif b.stress is not None:
+            ps.append(-np.trace(b.stress, axis1=1, axis2=2) / 3.0)
+        else:
+            ps.append(np.zeros(n))
         normals.append(np.zeros((n, dim)))
     for wl in case.walls:
         n = len(wl.x)
@@ -49,10 +77,12 @@ def particles_from_case(comm, case, scheme):
         kinds.append(np.full(n, WALL_SLIP if wl.slip else WALL, np.int8))
         vs.append(np.zeros((n, dim)) if wl.velocity is None else np.broadcast_to(wl.velocity, (n, dim)))
         ps.append(np.zeros(n))
+        stresses.append(np.zeros((n, 3, 3)))
         normals.append(wl.normal)
     kind = np.concatenate(kinds)
     p = np.concatenate(ps)
-    rho = np.where(kind == MOVING, scheme.initial_density(p), m.rho0)
+    material = (kind == MOVING) | (kind == CLAMPED)
+    rho = np.where(material, scheme.initial_density(p), m.rho0)
     arrays = {
         "gid": np.arange(len(kind), dtype=np.int64),
         "kind": kind,
@@ -62,11 +92,12 @@ def particles_from_case(comm, case, scheme):
         "rho": rho,
         "mass": rho * dp**dim,
         "normal": np.concatenate(normals),
+        "stress": np.concatenate(stresses),
     }
-    return _share(comm, arrays, scheme, dim)
+    return _share(comm, arrays, particle_fields(scheme, case.stabiliser), dim)
 
 
-def particles_from_frame(comm, frame, scheme):
+def particles_from_frame(comm, frame, scheme, stabiliser):
     """Particles (walls included) from ``read_frame(path, walls=True)``."""
     arrays = {k: v for k, v in frame.items() if isinstance(v, np.ndarray)}
-    return _share(comm, arrays, scheme, frame["dim"])
+    return _share(comm, arrays, particle_fields(scheme, stabiliser), frame["dim"])

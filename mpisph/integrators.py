@@ -19,7 +19,7 @@ dt = 0.4 h / (c + |v|max) (000_ Eq. 38).
 
 from numba import njit
 
-from .particles import MOVING
+from .particles import MOVING, is_wall
 
 CFL_ADVECTION = 0.25
 CFL_ACOUSTIC = 0.6
@@ -28,24 +28,26 @@ CFL_SINGLE = 0.4
 
 @njit(cache=True)
 def drift_half(n, kind, x, v, rho, drho_dt, dt, with_density):
-    """x += dt/2 v and, if ``with_density``, rho += dt/2 drho/dt (moving particles)."""
+    """x += dt/2 v (moving particles) and, if ``with_density``, rho += dt/2 drho/dt
+    (moving and clamped particles)."""
     dim = x.shape[1]
     half = 0.5 * dt
     for i in range(n):
-        if kind[i] != MOVING:
+        if is_wall(kind[i]):
             continue
-        for a in range(dim):
-            x[i, a] += half * v[i, a]
+        if kind[i] == MOVING:
+            for a in range(dim):
+                x[i, a] += half * v[i, a]
         if with_density:
             rho[i] += half * drho_dt[i]
 
 
 @njit(cache=True)
 def density_half(n, kind, rho, drho_dt, dt):
-    """rho += dt/2 drho/dt for the moving particles."""
+    """rho += dt/2 drho/dt for the moving and clamped particles."""
     half = 0.5 * dt
     for i in range(n):
-        if kind[i] == MOVING:
+        if not is_wall(kind[i]):
             rho[i] += half * drho_dt[i]
 
 

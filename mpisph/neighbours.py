@@ -7,17 +7,18 @@ i (and every sum over it) is the same whatever the decomposition: that is
 what makes runs on 1, 2 and 3 ranks agree bit for bit.
 
 Lists are in CSR form: the neighbours of particle i are
-``index[start[i]:start[i + 1]]``; only moving owned particles get lists.
+``index[start[i]:start[i + 1]]``; owned material particles (moving or
+clamped) get lists, wall particles none.
 """
 
 import numpy as np
 from numba import njit
 
-from .particles import MOVING
+from .particles import is_wall
 
 
 def neighbour_lists(x, gid, kind, n_owned, radius, origin):
-    """Neighbours within ``radius`` (strictly) of each owned moving particle."""
+    """Neighbours within ``radius`` (strictly) of each owned material particle."""
     by_gid = np.argsort(gid, kind="stable")
     return _build(x, kind, n_owned, float(radius), np.asarray(origin, dtype=np.float64), by_gid)
 
@@ -85,7 +86,7 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
         else:
             index = np.empty(0, np.int64)
         for i in range(n_owned):
-            if kind[i] != MOVING:
+            if is_wall(kind[i]):
                 continue
             count = 0
             for dz in range(dz_lo, dz_hi + 1):

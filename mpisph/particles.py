@@ -4,7 +4,9 @@ Every field is one numpy array whose first axis runs over particles. The
 rank's own particles come first (``[0, n_owned)``), ghost copies received in
 the halo follow (``[n_owned, n)``). Moving particles have ``kind == MOVING``;
 fixed dummy wall particles have ``kind == WALL`` (no-slip) or ``WALL_SLIP``
-(free-slip).
+(free-slip). ``CLAMPED`` particles belong to a solid body and evolve its
+density and stress like the moving ones, but are held in place (the clamped
+root of a cantilever); moving and clamped particles are the *material*.
 
 Fields are declared once with a per-particle shape (``()``, ``("dim",)`` or
 ``(3, 3)``); packing to and from flat float64 rows is what the parallel
@@ -15,10 +17,18 @@ through float64 exactly (global ids stay below 2**53).
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 MOVING = 0
 WALL = 1  # fixed wall particle, no-slip
 WALL_SLIP = 2  # fixed wall particle, free-slip
+CLAMPED = 3  # material particle held in place
+
+
+@njit(cache=True)
+def is_wall(kind):
+    """True for the fixed dummy wall kinds."""
+    return kind == WALL or kind == WALL_SLIP
 
 
 @dataclass(frozen=True)
@@ -34,7 +44,7 @@ class Field:
 # Fields every particle has, whatever its material.
 CORE_FIELDS = (
     Field("gid", (), np.int64, "global particle id"),
-    Field("kind", (), np.int8, "0 moving, 1 no-slip wall, 2 free-slip wall"),
+    Field("kind", (), np.int8, "0 moving, 1 no-slip wall, 2 free-slip wall, 3 clamped"),
     Field("x", ("dim",), np.float64, "position [m]"),
     Field("v", ("dim",), np.float64, "velocity (wall: wall velocity) [m/s]"),
     Field("mass", (), np.float64, "mass [kg]"),

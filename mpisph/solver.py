@@ -8,9 +8,12 @@ Per advection step, on every rank:
     4. rebalance   new cuts when the imbalance exceeds the threshold
     5. halo        ghosts within the kernel support of each cut (periodic images too)
     6. neighbours  cell-linked lists over owned + ghosts, in canonical order
-    7. configure   the scheme's per-configuration work (density reinit, viscosity, gravity)
-    8. stabilise   the case's particle-regularising shift (transport velocity)
-    9. acoustic    steps of the scheme until the advection step is covered
+    7. surface     free-surface classes from the position divergence (solids, UTVF)
+    8. configure   the scheme's per-configuration work (density reinit, viscosity,
+                   gravity, kernel-gradient correction)
+    9. stabilise   the case's particle-regularising shift (transport velocity), which
+                   acts as the shift after the previous Verlet update (000_ Eq. 42)
+   10. acoustic    steps of the scheme until the advection step is covered
                    (dt = allreduce(min) of the criteria, clipped to output times)
 
 Every output interval one frame holds the whole global state.
@@ -21,7 +24,7 @@ import time as wallclock
 import numpy as np
 from mpi4py import MPI
 
-from . import integrators
+from . import integrators, surface
 from .errors import BlowUp
 from .io.frames import frame_path, write_frame
 from .kernels import KERNELS, SUPPORT_FACTOR, normalisation
@@ -82,6 +85,8 @@ class Simulation:
             self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned,
                                                    self.support, self.case.domain[0])
         with self.timer("physics"):
+            if "surface" in pa.arrays:
+                surface.classify(self)
             self.scheme.configure(self)
             self.stabiliser.apply(self)
 
@@ -170,6 +175,9 @@ class Simulation:
 
     def write_frame(self):
         pa = self.particles
+        fields = pa.owned_fields()
+        if hasattr(self.scheme, "derived_fields"):
+            fields.update(self.scheme.derived_fields(pa, pa.n_owned))
         with self.timer("io"):
-            write_frame(frame_path(self.out_dir, self.frame_index), self.comm, pa.owned_fields(),
+            write_frame(frame_path(self.out_dir, self.frame_index), self.comm, fields,
                         time=self.t, step=self.step, dim=self.case.dim, params=self.params)

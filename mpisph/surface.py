@@ -1,25 +1,42 @@
-"""Free-surface detection from the divergence of the position (000_ Eq. 31).
+"""Free-surface detection from the divergence of the position (000_ Sec. 3.3).
 
-div r_i = -sum_j V_j r_ij . grad_i W_ij (mpisph's sign convention, see
-kernels.py) is close to the dimension d inside a body and drops where the
-kernel support is truncated; particles with div r < 0.75 d are on the free
-surface (000_ Sec. 3.3).
+div r_i = -sum_j V_j r_ij . grad_i W_ij (Eq. 31 in mpisph's sign convention,
+see kernels.py; walls included) is close to the dimension d inside a body
+and drops where the kernel support is truncated. Each material particle gets
+a class:
+
+- SURFACE (outermost): div r < 0.75 d;
+- NEAR_SURFACE: not outermost, but an outermost particle lies within h;
+- SPLASHED: outermost with no near-surface particle within h (a particle
+  that left the body: no material particle within h that is not itself
+  outermost);
+- INNER: the rest.
+
+``classify(s)`` fills the fields ``div_r`` and ``surface`` of the owned
+particles of a Simulation; the divergence of ghosts is refreshed in between.
 """
 
+import numpy as np
 from numba import njit
 
 from .kernels import dw
 from .neighbours import pair_distance
-from .particles import MOVING
+from .particles import Field, is_wall
 
 SURFACE_THRESHOLD = 0.75  # times the dimension
+INNER, NEAR_SURFACE, SURFACE, SPLASHED = 0, 1, 2, 3
+
+FIELDS = (
+    Field("div_r", (), np.float64, "position divergence (000_ Eq. 31) [-]"),
+    Field("surface", (), np.int8, "0 inner, 1 near-surface, 2 outermost surface, 3 splashed"),
+)
 
 
 @njit(cache=True)
 def position_divergence(n, start, nbr, x, mass, rho, kind, h, sigma, kernel, out):
-    """out_i = -sum_j V_j r_ij . grad_i W_ij for the moving particles in [0, n)."""
+    """out_i = -sum_j V_j r_ij . grad_i W_ij for the material particles in [0, n)."""
     for i in range(n):
-        if kind[i] != MOVING:
+        if is_wall(kind[i]):
             continue
         acc = 0.0
         for s in range(start[i], start[i + 1]):
@@ -27,3 +44,35 @@ def position_divergence(n, start, nbr, x, mass, rho, kind, h, sigma, kernel, out
             r = pair_distance(x, i, j)
             acc -= mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
         out[i] = acc
+
+
+@njit(cache=True)
+def surface_classes(n, start, nbr, x, kind, div_r, threshold, h, out):
+    """The class of each material particle in [0, n) (module docstring)."""
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        outermost = div_r[i] < threshold
+        near_outer = False
+        near_inner = False
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            if is_wall(kind[j]) or pair_distance(x, i, j) >= h:
+                continue
+            if div_r[j] < threshold:
+                near_outer = True
+            else:
+                near_inner = True
+        if outermost:
+            out[i] = SURFACE if near_inner else SPLASHED
+        else:
+            out[i] = NEAR_SURFACE if near_outer else INNER
+
+
+def classify(s):
+    """Fill ``div_r`` and ``surface`` of the owned particles of Simulation ``s``."""
+    pa = s.particles
+    n = pa.n_owned
+    position_divergence(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *s.kernel_args, pa.div_r)
+    s.halo.refresh(pa, ["div_r"])
+    surface_classes(n, s.start, s.nbr, s.xc, pa.kind, pa.div_r, SURFACE_THRESHOLD * pa.dim, s.h, pa.surface)

@@ -34,7 +34,8 @@ from numba import njit
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw, w
 from ..neighbours import pair_distance
-from ..particles import MOVING, WALL, Field
+from ..particles import MOVING, WALL, Field, is_wall
+from .walls import relative_velocity, wall_relative_normal
 
 RIEMANN_ETA = 3.0
 
@@ -48,37 +49,21 @@ def equation_of_state(n, kind, rho, p, rho0, c0):
 
 
 @njit(cache=True)
-def _wall_relative_normal(i, j, v, normal, dim):
-    """(v_i - v_w) . n_w for wall particle j."""
-    s = 0.0
-    for a in range(dim):
-        s += (v[i, a] - v[j, a]) * normal[j, a]
-    return s
-
-
-@njit(cache=True)
-def _u_jump(i, j, v, kind, normal, e, dim):
+def _u_jump(i, j, v, kind, normal, e, dim, dv):
     """(v_i - v_j) . e_ij with the wall's mirrored velocity when j is a wall."""
+    relative_velocity(i, j, v, kind, normal, dim, dv)
     s = 0.0
-    if kind[j] == MOVING:
-        for a in range(dim):
-            s += (v[i, a] - v[j, a]) * e[a]
-        return s
-    if kind[j] == WALL:
-        for a in range(dim):
-            s += 2.0 * (v[i, a] - v[j, a]) * e[a]
-        return s
-    vn = _wall_relative_normal(i, j, v, normal, dim)
     for a in range(dim):
-        s += 2.0 * vn * normal[j, a] * e[a]
+        s += dv[a] * e[a]
     return s
 
 
 @njit(cache=True)
-def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e):
+def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv):
     """Distance, partner pressure, mean density and normal velocity jump of pair (i, j).
 
-    Fills ``e`` with e_ij; a wall partner takes the states described above.
+    Fills ``e`` with e_ij and ``dv`` with v_i - v_j; a wall partner takes the
+    states described above.
     """
     dim = xc.shape[1]
     r = 0.0
@@ -88,14 +73,14 @@ def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e):
     r = np.sqrt(r)
     for a in range(dim):
         e[a] /= r
-    if kind[j] == MOVING:
+    if not is_wall(kind[j]):
         rho_j, p_j = rho[j], p[j]
     else:
         gr = 0.0
         for a in range(dim):
             gr -= gravity[a] * e[a] * r
         rho_j, p_j = rho[i], p[i] + rho[i] * max(0.0, gr)
-    return r, p_j, 0.5 * (rho[i] + rho_j), _u_jump(i, j, v, kind, normal, e, dim)
+    return r, p_j, 0.5 * (rho[i] + rho_j), _u_jump(i, j, v, kind, normal, e, dim, dv)
 
 
 @njit(cache=True)
@@ -104,6 +89,7 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
     """dv/dt = prior - 2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
     dim = xc.shape[1]
     e = np.empty(dim)
+    dv = np.empty(dim)
     for i in range(n):
         if kind[i] != MOVING:
             continue
@@ -111,7 +97,7 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
             dv_dt[i, a] = prior[i, a]
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e)
+            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv)
             beta = min(RIEMANN_ETA * max(-u_jump / c0, 0.0), 1.0)
             p_star = 0.5 * (p[i] + p_j) - 0.5 * beta * rho_bar * c0 * u_jump
             f = -2.0 * mass[j] / rho[j] * p_star * dw(r, h, sigma, kernel) / rho[i]
@@ -121,18 +107,23 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
 
 @njit(cache=True)
 def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
-               c0, h, sigma, kernel, drho_dt):
-    """drho/dt = rho_i sum_j V_j [u_jump + (p_i - p_j)/(rho_bar c0)] W'_ij (000_ Eq. 16)."""
+               c0, riemann, h, sigma, kernel, drho_dt):
+    """drho/dt = rho_i sum_j V_j [u_jump + riemann (p_i - p_j)/(rho_bar c0)] W'_ij.
+
+    ``riemann`` = 1: 000_ Eq. 16 (fluids, granular materials); 0: Eq. 21
+    (elastic solids, no Riemann dissipation). Moving and clamped particles.
+    """
     dim = xc.shape[1]
     e = np.empty(dim)
+    dv = np.empty(dim)
     for i in range(n):
-        if kind[i] != MOVING:
+        if is_wall(kind[i]):
             continue
         acc = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e)
-            acc += mass[j] / rho[j] * (u_jump + (p[i] - p_j) / (rho_bar * c0)) * dw(r, h, sigma, kernel)
+            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv)
+            acc += mass[j] / rho[j] * (u_jump + riemann * (p[i] - p_j) / (rho_bar * c0)) * dw(r, h, sigma, kernel)
         drho_dt[i] = rho[i] * acc
 
 
@@ -156,7 +147,7 @@ def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
                 for a in range(dim):
                     prior[i, a] += f * (v[i, a] - v[j, a])
             else:
-                vn = _wall_relative_normal(i, j, v, normal, dim)
+                vn = wall_relative_normal(i, j, v, normal, dim)
                 for a in range(dim):
                     prior[i, a] += f * vn * normal[j, a]
 
@@ -252,5 +243,5 @@ class FluidScheme:
         s.halo.refresh(pa, ["v"])
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
         continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
-                   self.gravity, self.m.c0, *k, pa.drho_dt)
+                   self.gravity, self.m.c0, 1.0, *k, pa.drho_dt)
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)

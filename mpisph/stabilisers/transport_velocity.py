@@ -1,7 +1,23 @@
-"""Transport-velocity correction scaled by the smoothing length, with limiter.
+"""Transport-velocity corrections: position shifts towards zero-order consistency.
 
-Once per advection step every moving particle is shifted towards a state of
-zero-order consistency (001_ Eqs. 14-16):
+Three stabilisers, selectable per case (``--set stabiliser=...``), applied
+once per advection step, i.e. after the Verlet update of the previous one
+(000_ Eq. 42):
+
+- ``tvf_limited`` (fluids without a free surface, 001_ Eqs. 14-16);
+- ``tvf``: 000_ Eq. 30 on inner particles only;
+- ``utvf``: 000_ Eqs. 30-37 on inner and free-surface particles alike.
+
+With g_i = sum_j V_j grad_i W_ij, the shift of 000_ Eq. 30 is
+dr_i = -2 alpha h^2 g_i, alpha = 0.2 (the minus sign is mpisph's convention
+for grad W, kernels.py: g points towards the denser side). UTVF projects the
+shift of free-surface particles (outermost and near-surface, surface.py) on
+the tangent plane, dr - (dr.n) n (Eq. 36), with the normal from the colour
+gradient corrected by B (Eqs. 32-35; one material, walls count as filled
+space, so grad C_i = g_i and n = B g / |B g|), and leaves splashed particles
+and those with div r < 0.6 d unshifted.
+
+The limited variant, once per advection step (001_ Eqs. 14-16):
 
     g_i  = 2 sum_j V_j grad_i W_ij
     beta = min(C h^2 |g_i|^2, 1)  if h^2 |g_i|^2 > 5e-4, else 0    (C = 1000)
@@ -18,14 +34,19 @@ free surface; the free-surface variants (TVF on inner particles, UTVF) of
 000_ build on the same gradient.
 """
 
+import numpy as np
 from numba import njit
 
+from .. import surface
 from ..kernels import dw
 from ..particles import MOVING
+from ..physics.solid import correction_matrix
 
 LIMITER_C = 1000.0
 LIMITER_THRESHOLD = 5e-4
 COEFFICIENT = 0.2
+ALPHA = 0.2  # 000_ Eq. 30
+NO_SHIFT_DIVERGENCE = 0.6  # times the dimension (000_ Sec. 3.3)
 
 
 @njit(cache=True)
@@ -59,8 +80,58 @@ def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
             x[i, 2] += c * g2
 
 
-class LimitedTransportVelocity:
-    """Stabiliser object: applies ``limited_shift`` once per advection step."""
+@njit(cache=True)
+def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unified, h, sigma, kernel):
+    """Add dr of 000_ Eq. 30 (``unified`` false: inner particles only) or Eq. 37 to ``x``."""
+    dim = xc.shape[1]
+    g = np.empty(dim)
+    bg = np.empty(dim)
+    scale = -2.0 * ALPHA * h * h
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        if cls[i] != surface.INNER and (not unified or cls[i] == surface.SPLASHED
+                                        or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
+            continue
+        g[:] = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = 0.0
+            for a in range(dim):
+                r += (xc[i, a] - xc[j, a]) ** 2
+            r = r ** 0.5
+            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+            for a in range(dim):
+                g[a] += f * (xc[i, a] - xc[j, a])
+        if cls[i] != surface.INNER:
+            norm = 0.0
+            for a in range(dim):
+                bg[a] = 0.0
+                for b in range(dim):
+                    bg[a] += B[i, a, b] * g[b]
+                norm += bg[a] * bg[a]
+            if norm == 0.0:
+                continue
+            gn = 0.0
+            for a in range(dim):
+                bg[a] /= norm ** 0.5
+                gn += g[a] * bg[a]
+            for a in range(dim):
+                g[a] -= gn * bg[a]
+        for a in range(dim):
+            x[i, a] += scale * g[a]
+
+
+class NoStabiliser:
+    name = "none"
+    needs_surface = False
+
+    def apply(self, s):
+        pass
+
+
+class LimitedTransportVelocity(NoStabiliser):
+    """Applies ``limited_shift`` (001_ Eq. 16) once per advection step."""
 
     name = "tvf_limited"
 
@@ -69,11 +140,29 @@ class LimitedTransportVelocity:
         limited_shift(pa.n_owned, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, *s.kernel_args)
 
 
-class NoStabiliser:
-    name = "none"
+class TransportVelocity:
+    """000_ Eq. 30 on inner particles only."""
+
+    name = "tvf"
+    needs_surface = True
+    unified = False
 
     def apply(self, s):
-        pass
+        pa = s.particles
+        n = pa.n_owned
+        B = np.zeros((n, pa.dim, pa.dim))
+        if self.unified:
+            correction_matrix(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *s.kernel_args, B)
+        consistency_shift(n, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
+                          B, self.unified, *s.kernel_args)
 
 
-STABILISERS = {"none": NoStabiliser, "tvf_limited": LimitedTransportVelocity}
+class UnifiedTransportVelocity(TransportVelocity):
+    """000_ Eqs. 30-37 on inner and free-surface particles."""
+
+    name = "utvf"
+    unified = True
+
+
+STABILISERS = {c.name: c for c in (NoStabiliser, LimitedTransportVelocity, TransportVelocity,
+                                   UnifiedTransportVelocity)}

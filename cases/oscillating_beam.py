@@ -1,0 +1,50 @@
+"""Oscillating cantilever beam: elastic plate clamped at its root, released with a bending-mode velocity (000_ Sec. 4.3)."""
+
+import numpy as np
+
+from mpisph.case import Body, Case, ElasticSolid, Param
+from mpisph.geometry import box
+
+KL = 1.875  # first root of cos(kL) cosh(kL) = -1
+
+PARAMS = {
+    "L": Param(0.2, "m", "free length of the beam", positive=True),
+    "H": Param(0.02, "m", "thickness of the beam", positive=True),
+    "H_over_dp": Param(20, "-", "particles across the thickness (dp = H / H_over_dp)", positive=True),
+    "rho0": Param(1000.0, "kg/m^3", "density", positive=True),
+    "E": Param(2.0e6, "Pa", "Young's modulus", positive=True),
+    "nu": Param(0.3975, "-", "Poisson's ratio", positive=True),
+    "v_f": Param(0.05, "-", "initial tip speed over the sound speed (000_ Eq. 45)", positive=True),
+    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37)",
+                        choices=("none", "tvf", "utvf")),
+    "t_end": Param(1.0, "s", "simulated end time", positive=True),
+    "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
+    "diagnostics_every": Param(5, "steps", "advection steps between rows of diagnostics.csv", positive=True),
+}
+
+
+def mode_shape(x, L):
+    """f(x) of 000_ Eq. 46 for the first bending mode."""
+    k = KL / L
+    return ((np.sin(KL) + np.sinh(KL)) * (np.cos(k * x) - np.cosh(k * x))
+            - (np.cos(KL) + np.cosh(KL)) * (np.sin(k * x) - np.sinh(k * x)))
+
+
+def setup(p):
+    dp = p.H / p.H_over_dp
+    clamp = int(np.ceil(2 * p.h_factor)) * dp  # the root is held over one kernel support
+    x = box((-clamp, -p.H / 2), (p.L, p.H / 2), dp, "the beam")
+    material = ElasticSolid(rho0=p.rho0, E=p.E, nu=p.nu)
+    free = x[:, 0] > 0.0
+    velocity = np.zeros_like(x)
+    velocity[free, 1] = p.v_f * material.c0 * mode_shape(x[free, 0], p.L) / mode_shape(p.L, p.L)
+    tip = int(np.argmin(np.hypot(x[:, 0] - p.L, x[:, 1])))
+    return Case(
+        dim=2,
+        domain=((-clamp - p.L, -p.L), (2 * p.L, p.L)),
+        dp=dp,
+        material=material,
+        bodies=[Body("beam", x, velocity=velocity, clamped=~free)],
+        stabiliser=p.stabiliser,
+        probes={"tip": tip},
+    )

@@ -1,0 +1,183 @@
+"""Drucker-Prager granular material (000_ Secs. 2.3 and 3.1.3).
+
+The total stress is integrated with the Jaumann rate and the non-associated
+flow rule (Eq. 10), the plastic multiplier rate of Eq. 13 and the constants
+of Eq. 14, then returned to the yield surface f = alpha_phi I1 + sqrt(J2) - k_c
+(Eq. 11) in two steps (Eq. 15 and the return mapping after Bui et al. 2008):
+
+1. tension cut-off: if alpha_phi I1 > k_c the hydrostatic part is moved to
+   the apex, I1 = k_c / alpha_phi (skipped for phi = 0, which has no apex);
+2. radial scaling: if sqrt(J2) > k_c - alpha_phi I1 the deviator is scaled
+   by r = (k_c - alpha_phi I1) / sqrt(J2).
+
+Plastic flow in the rate (Eq. 10) is applied only while the multiplier rate
+is positive (loading); on unloading from the yield surface the rate is
+elastic. The accumulated deviatoric plastic strain adds dt gamma_dot / sqrt(3)
+(the equivalent measure sqrt(2/3 e:e) of the deviatoric part of
+gamma_dot dg/dsigma) and, for the return mapping, sqrt(2/3) |Delta s| / 2G.
+
+Stress diffusion (Feng et al. 2021) smooths sigma minus its geostatic part
+sigma_v = -rho0 g (H - y), sigma_h = (1 - sin phi) sigma_v:
+
+    dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - sigma^geo_ij) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
+
+zeta = 0.1, over material neighbours. The deviators here are 3D (the
+stress tensor is 3 x 3 in 2D too, plane strain); p = -tr(sigma)/3.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..kernels import dw
+from ..particles import MOVING, Field, is_wall
+from .solid import material_pressure
+
+DIFFUSION_ZETA = 0.1
+
+
+@njit(cache=True)
+def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0,
+                     h, sigma, kernel, rate):
+    """rate_i = the diffusion term of the module docstring (vertical axis = last axis)."""
+    dim = xc.shape[1]
+    vert = dim - 1
+    coef0 = 2.0 * DIFFUSION_ZETA * h * c0
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        rate[i, :, :] = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            if is_wall(kind[j]):
+                continue
+            r2 = 0.0
+            for a in range(dim):
+                d = xc[i, a] - xc[j, a]
+                r2 += d * d
+            r = math.sqrt(r2)
+            geo = rho0 * g * (xc[i, vert] - xc[j, vert])
+            f = coef0 * mass[j] / rho[j] * r * dw(r, h, sigma, kernel) / (r2 + 0.01 * h * h)
+            for a in range(3):
+                for b in range(3):
+                    d_ab = stress[i, a, b] - stress[j, a, b]
+                    if a == b:
+                        d_ab -= geo if a == vert else k0 * geo
+                    rate[i, a, b] += f * d_ab
+
+
+@njit(cache=True)
+def _deviator(sig, out):
+    """out = sig - tr(sig)/3 I; returns (I1, sqrt(J2))."""
+    i1 = sig[0, 0] + sig[1, 1] + sig[2, 2]
+    j2 = 0.0
+    for a in range(3):
+        for b in range(3):
+            out[a, b] = sig[a, b]
+        out[a, a] -= i1 / 3.0
+    for a in range(3):
+        for b in range(3):
+            j2 += 0.5 * out[a, b] * out[a, b]
+    return i1, math.sqrt(j2)
+
+
+@njit(cache=True)
+def return_mapping(sig, alpha_phi, k_c, dev):
+    """Return the 3 x 3 stress ``sig`` to the yield surface in place; returns |Delta s|."""
+    i1 = sig[0, 0] + sig[1, 1] + sig[2, 2]
+    if alpha_phi > 0.0 and alpha_phi * i1 > k_c:
+        shift = (i1 - k_c / alpha_phi) / 3.0
+        for a in range(3):
+            sig[a, a] -= shift
+    i1, sqrt_j2 = _deviator(sig, dev)
+    limit = k_c - alpha_phi * i1
+    if sqrt_j2 <= limit:
+        return 0.0
+    scale = max(limit, 0.0) / sqrt_j2
+    for a in range(3):
+        for b in range(3):
+            sig[a, b] = scale * dev[a, b]
+        sig[a, a] += i1 / 3.0
+    return (1.0 - scale) * math.sqrt(2.0) * sqrt_j2
+
+
+@njit(cache=True)
+def drucker_prager_update(n, kind, L, diffusion, K, G, alpha_phi, alpha_psi, k_c, dt,
+                          stress, plastic_strain):
+    """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain."""
+    dev = np.empty((3, 3))
+    rate = np.empty((3, 3))
+    sig = np.empty((3, 3))
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        for a in range(3):
+            for b in range(3):
+                sig[a, b] = stress[i, a, b]
+        i1, sqrt_j2 = _deviator(sig, dev)
+        tr_d = L[i, 0, 0] + L[i, 1, 1] + L[i, 2, 2]
+        s_d = 0.0
+        for a in range(3):
+            for b in range(3):
+                d_ab = 0.5 * (L[i, a, b] + L[i, b, a])
+                s_d += dev[a, b] * d_ab
+                r = 2.0 * G * d_ab
+                for c in range(3):
+                    w_ac = 0.5 * (L[i, a, c] - L[i, c, a])
+                    w_bc = 0.5 * (L[i, b, c] - L[i, c, b])
+                    r += sig[a, c] * w_bc + w_ac * sig[c, b]
+                rate[a, b] = r + diffusion[i, a, b]
+            rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
+        gamma_dot = 0.0
+        if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:
+            gamma_dot = (3.0 * alpha_phi * K * tr_d + G / sqrt_j2 * s_d) / (9.0 * alpha_phi * K * alpha_psi + G)
+        if gamma_dot > 0.0:
+            for a in range(3):
+                for b in range(3):
+                    rate[a, b] -= gamma_dot * G / sqrt_j2 * dev[a, b]
+                rate[a, a] -= gamma_dot * 3.0 * K * alpha_psi
+        for a in range(3):
+            for b in range(3):
+                sig[a, b] += dt * rate[a, b]
+        ds = return_mapping(sig, alpha_phi, k_c, dev)
+        plastic_strain[i] += dt * max(gamma_dot, 0.0) / math.sqrt(3.0) + math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
+        for a in range(3):
+            for b in range(3):
+                stress[i, a, b] = sig[a, b]
+
+
+class DruckerPragerModel:
+    """Constitutive part of ``SolidScheme`` for ``DruckerPrager``."""
+
+    riemann_continuity = 1.0  # Eq. 16
+    fields = (Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
+    observable_names = ("potential_energy",)
+
+    def __init__(self, material, dim, gravity):
+        self.material = material
+        self.eta = 20.0 * dim  # 000_ Sec. 3.1.3
+        self.g = float(np.linalg.norm(gravity))
+        self.diffusion = None
+
+    def initial_density(self, pressure):
+        return np.full_like(pressure, self.material.rho0)
+
+    def pressure(self, s):
+        pa = s.particles
+        material_pressure(pa.n_owned, pa.kind, pa.stress, pa.p)
+
+    def update_stress(self, s, L, dt):
+        pa, m = s.particles, self.material
+        n = pa.n_owned
+        if self.diffusion is None or len(self.diffusion) != n:
+            self.diffusion = np.zeros((n, 3, 3))
+        stress_diffusion(n, s.start, s.nbr, s.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
+                         m.k0, m.c0, *s.kernel_args, self.diffusion)
+        drucker_prager_update(n, pa.kind, L, self.diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
+                              dt, pa.stress, pa.plastic_strain)
+
+    def energies(self, pa, n, gravity):
+        """Potential energy -sum m g.x of the moving particles."""
+        moving = pa.kind[:n] == MOVING
+        return {"potential_energy": float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ gravity)))}

@@ -1,0 +1,91 @@
+"""Linear elastic solid in the updated-Lagrangian Riemann SPH of 000_ Sec. 3.1.2.
+
+Pressure from the equation of state p = c0^2 (rho - rho0) with c0 of Eq. 6
+(Eqs. 3, 5); the shear stress is integrated from its rate (Eqs. 7-8),
+
+    dsigma^s/dt = 2 G (D - tr(D)/d I) + sigma^s W^T + W sigma^s,
+
+with D and W the symmetric and skew parts of the corrected velocity gradient
+(Eqs. 9, 23). The rotation terms (the Jaumann rate of Eq. 10) keep the rate
+objective when the body rotates, as the beam's root section does; for small
+rotations they vanish and the rate is Eq. 8. Continuity is Eq. 21 (no
+Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
+"""
+
+import numpy as np
+from numba import njit
+
+from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
+
+
+@njit(cache=True)
+def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
+    """p from the equation of state and the total stress sigma = sigma^s - p I."""
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        p[i] = c0 * c0 * (rho[i] - rho0)
+        for a in range(3):
+            for b in range(3):
+                stress[i, a, b] = shear[i, a, b]
+            stress[i, a, a] -= p[i]
+
+
+@njit(cache=True)
+def shear_stress_update(n, kind, L, G, dim, dt, shear):
+    """sigma^s += dt [2 G dev_d(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation)."""
+    rate = np.empty((3, 3))
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        trace = 0.0
+        for a in range(dim):
+            trace += L[i, a, a]
+        for a in range(3):
+            for b in range(3):
+                d_ab = 0.5 * (L[i, a, b] + L[i, b, a])
+                r = 2.0 * G * d_ab
+                for c in range(3):
+                    w_ac = 0.5 * (L[i, a, c] - L[i, c, a])
+                    w_bc = 0.5 * (L[i, b, c] - L[i, c, b])
+                    r += shear[i, a, c] * w_bc + w_ac * shear[i, c, b]
+                rate[a, b] = r
+        for a in range(dim):
+            rate[a, a] -= 2.0 * G * trace / dim
+        for a in range(3):
+            for b in range(3):
+                shear[i, a, b] += dt * rate[a, b]
+
+
+class ElasticModel:
+    """Constitutive part of ``SolidScheme`` for ``ElasticSolid``."""
+
+    eta = -1.0  # beta = 1 in the Riemann pressure
+    riemann_continuity = 0.0  # Eq. 21
+    fields = (Field("shear_stress", (3, 3), np.float64, "shear (deviatoric) stress [Pa]"),)
+    observable_names = ("strain_energy", "potential_energy")
+
+    def __init__(self, material):
+        self.material = material
+
+    def initial_density(self, pressure):
+        return self.material.rho0 + pressure / self.material.c0**2
+
+    def pressure(self, s):
+        pa, m = s.particles, self.material
+        elastic_pressure(pa.n_owned, pa.kind, pa.rho, m.rho0, m.c0, pa.shear_stress, pa.p, pa.stress)
+
+    def update_stress(self, s, L, dt):
+        pa = s.particles
+        shear_stress_update(pa.n_owned, pa.kind, L, self.material.G, pa.dim, dt, pa.shear_stress)
+
+    def energies(self, pa, n, gravity):
+        """Strain energy sum V (s:s/4G + p^2/2K) (material) and potential energy -sum m g.x (moving)."""
+        m = self.material
+        material = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))
+        vol = pa.mass[:n] / pa.rho[:n]
+        s = pa.shear_stress[:n]
+        dens = np.sum(s * s, axis=(1, 2)) / (4.0 * m.G) + pa.p[:n] ** 2 / (2.0 * m.K)
+        moving = pa.kind[:n] == MOVING
+        return {"strain_energy": float(np.sum((vol * dens)[material])),
+                "potential_energy": float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ gravity)))}

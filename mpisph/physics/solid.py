@@ -1,0 +1,246 @@
+"""Riemann-based SPH for solids: what elastic and granular materials share.
+
+Stresses are full 3 x 3 Cauchy tensors, tension positive, also in 2D (plane
+strain: the out-of-plane strain rate is zero, the out-of-plane stress is
+not). In mpisph's sign convention (e_ij from j to i, grad_i W_ij = W' e_ij,
+W' <= 0, see kernels.py):
+
+    velocity gradient   L_i = -sum_j V_j (v_i - v_j) (x) (B_i grad_i W_ij)     (000_ Eq. 23)
+    correction matrix   B_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1              (000_ Eq. 24)
+    momentum            dv_i/dt = g + 1/rho_i sum_j V_j [(sigma_i + sigma_j) e_ij
+                                  + beta rho_bar c0 u_jump e_ij] W'_ij           (000_ Eqs. 17, 22, 25-26)
+
+with u_jump = (v_i - v_j).e_ij. The momentum line is 2/rho_i sum_j V_j
+sigma* grad_i W_ij with sigma* = (sigma^s_i + sigma^s_j)/2 - P* I and the
+Riemann pressure P* = (p_i + p_j)/2 - beta rho_bar c0 u_jump / 2: elastic
+solids take beta = 1 (000_ Sec. 3.1.2), granular materials the limiter
+beta = min(eta max(-u_jump/c0, 0), 1) with eta = 20 d (000_ Sec. 3.1.3).
+
+The inverse in B is regularised where the neighbourhood is degenerate
+(a free corner, a splashed particle): with A = -sum_j V_j r_ij (x) grad W,
+B = (adj A + w I) / (det A + w), w = max(0, a_min - det A), which is A^-1
+wherever det A >= a_min = 0.2^d and blends towards the identity below.
+
+A wall particle takes the stress and density of the material particle it
+interacts with and the mirrored velocity of walls.py (000_ Sec. 5: no-slip
+walls after Bui et al. 2008).
+
+The order of the sub-steps of one acoustic step (position-based Verlet,
+000_ Eqs. 39-41) is spelled out in ``SolidScheme.acoustic_step``.
+"""
+
+import numpy as np
+from numba import njit
+
+from ..integrators import density_half, drift_half, kick
+from ..kernels import dw
+from ..particles import MOVING, Field, is_wall
+from .fluid import continuity, prior_acceleration
+from .walls import relative_velocity
+
+DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
+
+
+@njit(cache=True)
+def _unit_offset(xc, i, j, e):
+    """Fill e with e_ij and return r_ij."""
+    dim = xc.shape[1]
+    r = 0.0
+    for a in range(dim):
+        e[a] = xc[i, a] - xc[j, a]
+        r += e[a] * e[a]
+    r = np.sqrt(r)
+    for a in range(dim):
+        e[a] /= r
+    return r
+
+
+@njit(cache=True)
+def _regularised_inverse(A, out):
+    """out = (adj A + w I) / (det A + w) for a symmetric 2 x 2 or 3 x 3 A."""
+    dim = A.shape[0]
+    if dim == 2:
+        det = A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+        out[0, 0] = A[1, 1]
+        out[0, 1] = -A[0, 1]
+        out[1, 0] = -A[1, 0]
+        out[1, 1] = A[0, 0]
+    else:
+        for a in range(3):
+            a1, a2 = (a + 1) % 3, (a + 2) % 3
+            for b in range(3):
+                b1, b2 = (b + 1) % 3, (b + 2) % 3
+                out[b, a] = A[a1, b1] * A[a2, b2] - A[a1, b2] * A[a2, b1]
+        det = A[0, 0] * out[0, 0] + A[0, 1] * out[1, 0] + A[0, 2] * out[2, 0]
+    w = max(0.0, DEGENERATE_DET ** dim - det)
+    for a in range(dim):
+        out[a, a] += w
+    for a in range(dim):
+        for b in range(dim):
+            out[a, b] /= det + w
+
+
+@njit(cache=True)
+def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
+    """B_i of 000_ Eq. 24 (regularised) for the material particles in [0, n)."""
+    dim = xc.shape[1]
+    e = np.empty(dim)
+    A = np.empty((dim, dim))
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        A[:, :] = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = _unit_offset(xc, i, j, e)
+            f = -mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
+            for a in range(dim):
+                for b in range(dim):
+                    A[a, b] += f * e[a] * e[b]
+        _regularised_inverse(A, B[i])
+
+
+@njit(cache=True)
+def velocity_gradient(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L):
+    """L_i of 000_ Eq. 23 as a 3 x 3 tensor (zero third row and column in 2D)."""
+    dim = xc.shape[1]
+    e = np.empty(dim)
+    dv = np.empty(dim)
+    g = np.empty(dim)
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        L[i, :, :] = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = _unit_offset(xc, i, j, e)
+            f = mass[j] / rho[j] * dw(r, h, sigma, kernel)
+            relative_velocity(i, j, v, kind, normal, dim, dv)
+            for a in range(dim):
+                acc = 0.0
+                for b in range(dim):
+                    acc += B[i, a, b] * e[b]
+                g[a] = f * acc
+            for a in range(dim):
+                for b in range(dim):
+                    L[i, a, b] -= dv[a] * g[b]
+
+
+@njit(cache=True)
+def stress_acceleration(n, start, nbr, xc, v, rho, stress, mass, kind, normal,
+                        c0, eta, h, sigma, kernel, prior, dv_dt):
+    """dv/dt of the moving particles (module docstring); eta <= 0 means beta = 1."""
+    dim = xc.shape[1]
+    e = np.empty(dim)
+    dv = np.empty(dim)
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            dv_dt[i, a] = prior[i, a]
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r = _unit_offset(xc, i, j, e)
+            wall = is_wall(kind[j])
+            k = i if wall else j
+            relative_velocity(i, j, v, kind, normal, dim, dv)
+            u_jump = 0.0
+            for a in range(dim):
+                u_jump += dv[a] * e[a]
+            beta = 1.0 if eta <= 0.0 else min(eta * max(-u_jump / c0, 0.0), 1.0)
+            dissipation = beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
+            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / rho[i]
+            for a in range(dim):
+                acc = dissipation * e[a]
+                for b in range(dim):
+                    acc += (stress[i, a, b] + stress[k, a, b]) * e[b]
+                dv_dt[i, a] += f * acc
+
+
+@njit(cache=True)
+def material_pressure(n, kind, stress, p):
+    """p = -tr(sigma)/3 for the material particles."""
+    for i in range(n):
+        if not is_wall(kind[i]):
+            p[i] = -(stress[i, 0, 0] + stress[i, 1, 1] + stress[i, 2, 2]) / 3.0
+
+
+class SolidScheme:
+    """The order of the solid sub-steps; the constitutive model fills in its part.
+
+    The model (``ElasticModel`` or ``DruckerPragerModel``) provides: its
+    extra fields, ``eta`` of the momentum limiter, ``riemann_continuity``
+    (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
+    current density or stress), ``update_stress(s, L, dt)`` and ``energies``.
+    """
+
+    needs_surface = True
+
+    base_fields = (
+        Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
+        Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
+        Field("prior", ("dim",), np.float64, "gravity [m/s^2]"),
+        Field("stress", (3, 3), np.float64, "Cauchy stress, tension positive [Pa]"),
+    )
+
+    def __init__(self, model, gravity, u_ref):
+        self.model = model
+        self.m = model.material
+        self.gravity = gravity
+        self.u_ref = u_ref
+        self.fields = self.base_fields + model.fields
+        self.B = self.L = None
+
+    def initial_density(self, pressure):
+        return self.model.initial_density(pressure)
+
+    def speeds(self):
+        """(sound speed, kinematic viscosity) for the time-step criteria."""
+        return self.m.c0, 0.0
+
+    def configure(self, s):
+        """Once per advection step: correction matrices on the frozen positions, gravity."""
+        pa, k = s.particles, s.kernel_args
+        n, dim = pa.n_owned, pa.dim
+        self.B = np.zeros((n, dim, dim))
+        self.L = np.zeros((n, 3, 3))
+        correction_matrix(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *k, self.B)
+        prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
+                           self.gravity, 0.0, *k, pa.prior)
+
+    def acoustic_step(self, s, dt):
+        pa, k = s.particles, s.kernel_args
+        n = pa.n_owned
+        # 1. first half: positions and density to n + 1/2 (000_ Eq. 39)
+        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, True)
+        # 2. pressure and total stress, then every field the momentum sum reads
+        self.model.pressure(s)
+        s.halo.refresh(pa, ["rho", "p", "stress"])
+        # 3. momentum and kick (000_ Eq. 40), then the new velocities of ghosts
+        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.stress, pa.mass, pa.kind,
+                            pa.normal, self.m.c0, self.model.eta, *k, pa.prior, pa.dv_dt)
+        kick(n, pa.kind, pa.v, pa.dv_dt, dt)
+        s.halo.refresh(pa, ["v"])
+        # 4. second half: positions (000_ Eq. 41), velocity gradient, density, stress
+        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
+        velocity_gradient(n, s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal,
+                          self.B, *k, self.L)
+        continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
+                   self.gravity, self.m.c0, self.model.riemann_continuity, *k, pa.drho_dt)
+        density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
+        self.model.update_stress(s, self.L, dt)
+
+    def observables(self, pa, n):
+        """Extra global sums for diagnostics.csv, over the owned particles [0, n)."""
+        return self.model.energies(pa, n, self.gravity)
+
+    def derived_fields(self, pa, n):
+        """Output-only fields of the owned particles: von Mises, vertical stress, speed."""
+        sig = pa.stress[:n]
+        dev = sig - np.trace(sig, axis1=1, axis2=2)[:, None, None] / 3.0 * np.eye(3)
+        vertical = pa.dim - 1
+        return {
+            "von_mises": np.sqrt(1.5 * np.sum(dev * dev, axis=(1, 2))),
+            "vertical_stress": sig[:, vertical, vertical].copy(),
+            "speed": np.linalg.norm(pa.v[:n], axis=1),
+        }
