@@ -227,8 +227,8 @@ class SolidScheme:
                           self.B, *k, self.L)
         continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
                    self.gravity, self.m.c0, self.model.riemann_continuity, *k, pa.drho_dt)
+        self.model.update_stress(s, self.L, dt)  # reads rho of neighbours: before density_half
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
-        self.model.update_stress(s, self.L, dt)
 
     def observables(self, pa, n):
         """Extra global sums for diagnostics.csv, over the owned particles [0, n)."""

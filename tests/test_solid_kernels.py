@@ -1,0 +1,112 @@
+"""Kernels of the solid scheme: correction matrix, velocity gradient, return mapping, constants."""
+
+import math
+
+import numpy as np
+import pytest
+
+from mpisph.kernels import KERNELS, normalisation
+from mpisph.materials import DruckerPrager, ElasticSolid
+from mpisph.neighbours import neighbour_lists
+from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
+from mpisph.physics.solid import correction_matrix, velocity_gradient
+
+DP = 0.01
+H = 1.3 * DP
+KERNEL = KERNELS["wendland_c2"]
+
+
+def block(nx=12, ny=10):
+    gx, gy = (np.arange(nx) + 0.5) * DP, (np.arange(ny) + 0.5) * DP
+    x = np.stack([a.ravel() for a in np.meshgrid(gx, gy, indexing="ij")], axis=1)
+    n = len(x)
+    kind = np.zeros(n, np.int8)
+    start, nbr = neighbour_lists(x, np.arange(n), kind, n, 2 * H, np.zeros(2))
+    return x, kind, np.full(n, 1000 * DP**2), np.full(n, 1000.0), start, nbr
+
+
+def corrections(x, kind, mass, rho, start, nbr):
+    B = np.zeros((len(x), 2, 2))
+    correction_matrix(len(x), start, nbr, x, mass, rho, kind, H, normalisation(KERNEL, H, 2), KERNEL, B)
+    return B
+
+
+def test_correction_matrix_is_identity_inside_and_corrects_edges():
+    x, kind, mass, rho, start, nbr = block()
+    B = corrections(x, kind, mass, rho, start, nbr)
+    inner = np.all((x > 3 * DP) & (x < np.array([9, 7]) * DP), axis=1)
+    # isotropic, and the identity up to the lattice sum's 2.7 % departure from the integral at h = 1.3 dp
+    np.testing.assert_allclose(B[inner], np.broadcast_to(B[inner][0], B[inner].shape), atol=1e-12)
+    np.testing.assert_allclose(B[inner][0], 1.0268 * np.eye(2), atol=1e-4)
+    edge = (x[:, 1] < DP) & (x[:, 0] > 3 * DP) & (x[:, 0] < 9 * DP)
+    assert np.all(B[edge, 1, 1] > 1.5)  # half a support: the normal gradient is doubled back
+
+
+def test_velocity_gradient_of_a_linear_field_is_exact_up_to_the_corners():
+    x, kind, mass, rho, start, nbr = block()
+    A = np.array([[0.3, -1.2], [0.7, 0.1]])
+    v = x @ A.T
+    B = corrections(x, kind, mass, rho, start, nbr)
+    L = np.zeros((len(x), 3, 3))
+    velocity_gradient(len(x), start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B,
+                      H, normalisation(KERNEL, H, 2), KERNEL, L)
+    corner = np.minimum(x[:, 0], 0.12 - x[:, 0]) + np.minimum(x[:, 1], 0.10 - x[:, 1]) < 2.5 * DP
+    np.testing.assert_allclose(L[~corner, :2, :2], np.broadcast_to(A, L[~corner, :2, :2].shape), atol=1e-9)
+    assert np.all(np.isfinite(L)) and np.all(L[:, 2, :] == 0.0)
+
+
+def test_degenerate_neighbourhood_gets_a_finite_correction():
+    x = np.array([[0.0, 0.0], [DP, 0.0]])  # a pair: A has rank one
+    kind = np.zeros(2, np.int8)
+    start, nbr = neighbour_lists(x, np.arange(2), kind, 2, 2 * H, np.zeros(2) - DP)
+    B = corrections(x, kind, np.full(2, 0.1), np.full(2, 1000.0), start, nbr)
+    assert np.all(np.isfinite(B)) and np.abs(B).max() < 1e3
+
+
+def soil(c=5e3, phi=25.0):
+    return DruckerPrager(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=c, phi=phi, psi=0.0)
+
+
+def yield_function(sig, m):
+    i1 = np.trace(sig)
+    s = sig - i1 / 3 * np.eye(3)
+    return m.alpha_phi * i1 + math.sqrt(0.5 * np.sum(s * s)) - m.k_c
+
+
+def test_return_mapping_lands_on_the_yield_surface():
+    m = soil()
+    sig = np.diag([-20e3, -50e3, -20e3]) + 30e3 * (np.eye(3)[[1, 0, 2]] * [1, 1, 0])
+    assert yield_function(sig, m) > 0
+    ds = return_mapping(sig, m.alpha_phi, m.k_c, np.empty((3, 3)))
+    assert ds > 0 and yield_function(sig, m) == pytest.approx(0.0, abs=1e-6 * 50e3)
+
+
+def test_return_mapping_keeps_admissible_stress_and_cuts_tension_to_the_apex():
+    m = soil()
+    inside = np.diag([-30e3, -40e3, -30e3])
+    before = inside.copy()
+    assert return_mapping(inside, m.alpha_phi, m.k_c, np.empty((3, 3))) == 0.0
+    np.testing.assert_array_equal(inside, before)
+    tension = np.diag([50e3, 60e3, 50e3])
+    return_mapping(tension, m.alpha_phi, m.k_c, np.empty((3, 3)))
+    np.testing.assert_allclose(tension, np.eye(3) * m.k_c / m.alpha_phi / 3, rtol=1e-12)
+
+
+def test_frictionless_cohesionless_soil_does_not_divide_by_zero():
+    m = soil(c=0.0, phi=0.0)
+    assert m.alpha_phi == 0.0 and m.k_c == 0.0
+    sig = np.diag([-1e3, -3e3, -2e3])
+    return_mapping(sig, m.alpha_phi, m.k_c, np.empty((3, 3)))
+    np.testing.assert_allclose(sig, -2e3 * np.eye(3))  # a fluid: no deviator left
+
+
+def test_material_constants():
+    e = ElasticSolid(rho0=1000.0, E=2e6, nu=0.3975)
+    assert e.c0 == pytest.approx(math.sqrt(2e6 / (3 * (1 - 2 * 0.3975) * 1000)))
+    m = soil()
+    t = math.tan(math.radians(25.0))
+    assert m.alpha_phi == pytest.approx(t / math.sqrt(9 + 12 * t * t))
+    assert m.k_c == pytest.approx(3 * 5e3 / math.sqrt(9 + 12 * t * t))
+    sig = geostatic_stress(np.array([[0.0, 0.5]]), 2.0, m, 9.8)[0]
+    assert sig[1, 1] == pytest.approx(-1850 * 9.8 * 1.5)
+    assert sig[0, 0] == sig[2, 2] == pytest.approx((1 - math.sin(math.radians(25))) * sig[1, 1])
