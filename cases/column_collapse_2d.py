@@ -4,6 +4,7 @@ import numpy as np
 
 from mpisph.case import Body, Case, DruckerPrager, Param, Wall
 from mpisph.geometry import box, box_walls
+from mpisph.physics.drucker_prager import geostatic_stress
 
 PARAMS = {
     "L": Param(0.2, "m", "length of the column (0.2 or 0.1 in the paper)", positive=True),
@@ -23,16 +24,6 @@ PARAMS = {
 }
 
 
-def geostatic_stress(x, top, rho0, g, k0):
-    """sigma_v = -rho0 g (top - y), sigma_h = k0 sigma_v on every horizontal axis (plane strain)."""
-    stress = np.zeros((len(x), 3, 3))
-    vertical = x.shape[1] - 1
-    sv = -rho0 * g * (top - x[:, vertical])
-    for a in range(3):
-        stress[:, a, a] = sv if a == vertical else k0 * sv
-    return stress
-
-
 def setup(p):
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
     column = box((0.0, 0.0), (p.L, p.H), p.dp, "the column")
@@ -45,7 +36,7 @@ def setup(p):
         domain=((-margin, -margin), (floor + margin, 2.0 * p.H)),
         dp=p.dp,
         material=soil,
-        bodies=[Body("column", column, stress=geostatic_stress(column, p.H, p.rho0, p.g, soil.k0))],
+        bodies=[Body("column", column, stress=geostatic_stress(column, p.H, soil, p.g))],
         walls=[Wall("tank", wall_x, wall_n)],
         gravity=(0.0, -p.g),
         stabiliser=p.stabiliser,

@@ -35,3 +35,55 @@ def nearest_value(frame, name, point, count=4):
     """Mean of field ``name`` over the ``count`` particles nearest ``point``."""
     d = np.linalg.norm(frame["x"] - np.asarray(point, dtype=float), axis=1)
     return float(np.mean(frame[name][np.argsort(d)[:count]]))
+
+
+def _surface_profile(x, dp):
+    """Bins of width dp along x from the leftmost particle: (left edges, top y + dp/2, occupied)."""
+    lo = x[:, 0].min()
+    k = np.floor((x[:, 0] - lo) / dp).astype(int)
+    top = np.full(k.max() + 1, -np.inf)
+    np.maximum.at(top, k, x[:, 1])
+    return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top)
+
+
+def runout(frame, dp):
+    """Right end of the connected deposit: the last dp-wide bin before the first empty one, plus its width.
+
+    Particles beyond a gap (grains thrown ahead of the toe) do not count.
+    """
+    left, _, occupied = _surface_profile(frame["x"], dp)
+    gap = np.flatnonzero(~occupied)
+    last = (gap[0] - 1) if len(gap) else len(occupied) - 1
+    return float(left[last] + dp)
+
+
+def deposit_height(frame, dp, x_max):
+    """Highest free surface (top particle + dp/2) among particles with x < x_max."""
+    x = frame["x"]
+    return float(x[x[:, 0] < x_max, 1].max() + 0.5 * dp)
+
+
+def crest_crack(first, last, dp, face, drop):
+    """Distance behind the face ``face`` (x) of the crest crack: the leftmost particle of the
+    initial top layer that has sunk by more than ``drop``."""
+    x0, x1 = first["x"], last["x"]
+    top = x0[:, 1] > x0[:, 1].max() - 0.5 * dp
+    sunk = top & (x0[:, 1] - x1[:, 1] > drop)
+    if not sunk.any():
+        return 0.0
+    return float(face - x0[sunk, 0].min())
+
+
+def zero_crossings(t, y, rising):
+    """Times where ``y`` crosses zero upwards (``rising``) or downwards, by linear interpolation."""
+    t, y = np.asarray(t), np.asarray(y)
+    sign = (y[:-1] < 0) & (y[1:] >= 0) if rising else (y[:-1] > 0) & (y[1:] <= 0)
+    k = np.flatnonzero(sign)
+    return t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
+
+
+def first_period(t, y):
+    """First period of an oscillation that starts at y = 0 moving up: its first upward crossing after t > 0."""
+    up = zero_crossings(t, y, rising=True)
+    up = up[up > 0.0]
+    return float(up[0]) if len(up) else float("nan")

@@ -53,3 +53,9 @@ KOSHIZUKA_Z = np.array([1, 1.111, 1.252, 1.505, 1.892, 2.241, 2.615, 3.003, 3.62
 
 # Rotating square patch (000_ Eq. 44): centre pressure over rho omega^2 L^2.
 ROTATING_SQUARE_CENTRE_PRESSURE = -0.147343
+
+
+def beam_period(L=0.2, H=0.02, rho0=1000.0, E=2.0e6, nu=0.3975, kL=1.875):
+    """First period 2 pi / omega of the cantilever, omega^2 = E H^2 k^4 / (12 rho0 (1 - nu^2)) (000_ Eq. 47)."""
+    k = kL / L
+    return 2.0 * np.pi / np.sqrt(E * H**2 * k**4 / (12.0 * rho0 * (1.0 - nu**2)))

@@ -28,3 +28,8 @@ def test_rotating_square_centre_pressure_from_eq44():
     spec.loader.exec_module(case)
     p = case.initial_pressure(np.zeros(1), np.zeros(1), 1.0, 1.0, 1.0, 100)[0]
     assert p == pytest.approx(references.ROTATING_SQUARE_CENTRE_PRESSURE, abs=1e-6)
+
+
+def test_beam_period():
+    from mpisph.references import beam_period
+    assert beam_period() == pytest.approx(0.2541, abs=5e-5)

@@ -147,6 +147,17 @@ def drucker_prager_update(n, kind, L, diffusion, K, G, alpha_phi, alpha_psi, k_c
                 stress[i, a, b] = sig[a, b]
 
 
+def geostatic_stress(x, top, soil, g):
+    """Initial stress at rest under a level surface at height ``top``: sigma_v = -rho0 g (top - y)
+    on the vertical (last) axis, sigma_h = (1 - sin phi) sigma_v on the others (also out of plane in 2D)."""
+    stress = np.zeros((len(x), 3, 3))
+    vertical = x.shape[1] - 1
+    sv = -soil.rho0 * g * (top - x[:, vertical])
+    for a in range(3):
+        stress[:, a, a] = sv if a == vertical else soil.k0 * sv
+    return stress
+
+
 class DruckerPragerModel:
     """Constitutive part of ``SolidScheme`` for ``DruckerPrager``."""
 
