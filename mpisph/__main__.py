@@ -1,4 +1,4 @@
-"""Command line: python -m mpisph CASE [options] | list | info CASE | report FRAME...
+"""Command line: python -m mpisph CASE [options] | list | info CASE | report FRAME... | plot OUT_DIR [PNG]
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
 ``mpisph: error: ...`` on stderr and status 2 before anything is written; a
@@ -17,7 +17,8 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
          "[--out DIR] [--restart FRAME] [--quiet]\n"
          "       python -m mpisph list\n"
          "       python -m mpisph info CASE\n"
-         "       python -m mpisph report FRAME [FRAME ...]")
+         "       python -m mpisph report FRAME [FRAME ...]\n"
+         "       python -m mpisph plot OUT_DIR [PNG]")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -88,6 +89,12 @@ def cmd_report(paths):
         m = tensile_instability(frame, lo, periods)
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%")
+
+
+def cmd_plot(out_dir, png_path=None):
+    """PNG of the last frame of a run: particles by plastic strain (or speed), walls, initial outline."""
+    from .plots import deposit_png
+    print(f"wrote {deposit_png(out_dir, png_path)}")
 
 
 def _prepare_out_dir(comm, path):
@@ -170,6 +177,12 @@ def main(argv=None):
                 raise InputError("usage: python -m mpisph report FRAME [FRAME ...]")
             if comm.rank == 0:
                 cmd_report(argv[1:])
+            return 0
+        if argv[:1] == ["plot"]:
+            if len(argv) not in (2, 3):
+                raise InputError("usage: python -m mpisph plot OUT_DIR [PNG]")
+            if comm.rank == 0:
+                cmd_plot(*argv[1:])
             return 0
         run(_parser().parse_args(argv), comm)
         return 0
