@@ -87,3 +87,9 @@ def first_period(t, y):
     up = zero_crossings(t, y, rising=True)
     up = up[up > 0.0]
     return float(up[0]) if len(up) else float("nan")
+
+
+def surface_profile(frame, dp):
+    """(bin centres, top of the deposit) over occupied dp-wide bins along x."""
+    left, top, occupied = _surface_profile(frame["x"], dp)
+    return left[occupied] + 0.5 * dp, top[occupied]

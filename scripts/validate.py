@@ -1,4 +1,4 @@
-"""Run the fluid validation cases and write docs/VALIDATION.md with plots.
+"""Run the validation cases and write docs/VALIDATION.md with plots.
 
     .venv/bin/python scripts/validate.py [--ranks 2] [--only NAME ...]
 
@@ -183,8 +183,72 @@ def rotating_patch(ranks):
     return "Rotating square patch (dp = 0.02)", cmd, rows, image, ""
 
 
+def deposit_panel(fig, ax, frame, first, title):
+    """Particles of ``frame`` coloured by plastic strain over the outline of ``first``."""
+    sc = ax.scatter(frame["x"][:, 0], frame["x"][:, 1], c=frame["plastic_strain"], s=1, cmap="viridis",
+                    vmax=np.percentile(frame["plastic_strain"], 99))
+    lo, hi = first["x"].min(axis=0), first["x"].max(axis=0)
+    ax.plot([lo[0], hi[0], hi[0], lo[0], lo[0]], [lo[1], lo[1], hi[1], hi[1], lo[1]], "k--", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_title(f"{title}, plastic strain")
+    fig.colorbar(sc, ax=ax)
+
+
+def column_collapse(ranks):
+    dp = 0.0025
+    frames, diag, cmd = run("column_collapse_2d", "column_collapse_2d", ["--set", f"dp={dp}"], ranks)
+    last = frames[-1]
+    fig, ax = plt.subplots(2, 1, figsize=(10, 6))
+    for f in frames[::4]:
+        ax[0].plot(*measure.surface_profile(f, dp), lw=1, label=f"t = {f['t']:.2f} s")
+    ax[0].set_xlabel("x [m]")
+    ax[0].set_ylabel("surface height [m]")
+    ax[0].legend(fontsize=7, ncol=3)
+    deposit_panel(fig, ax[1], last, frames[0], f"t = {last['t']:.1f} s")
+    image = save(fig, "column_collapse_2d.png")
+    energy = diag["kinetic_energy"] + diag["potential_energy"]
+    speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
+    L = measure.runout(last, dp)
+    top = measure.deposit_height(last, dp, 0.05)
+    rows = [("runout [m]", f"{L:.3f}", "0.32-0.38", "-", "[0.30, 0.40]"),
+            ("column top [m]", f"{top:.4f}", "0.1", f"{100 * (top / 0.1 - 1):+.1f}%", "5%"),
+            ("final / peak max speed", f"{speeds[-1] / max(speeds):.4f}", "0", "-", "< 0.01"),
+            ("final / initial mechanical energy", f"{energy[-1] / energy[0]:.3f}", "0.69 +- 0.03",
+             f"{energy[-1] / energy[0] - 0.69:+.3f}", "+- 0.05")]
+    note = ("Runout: the right end of the connected deposit (grains thrown ahead of a gap do not count); "
+            "profiles are the highest particle per dp-wide bin.")
+    return "Granular column collapse, L = 0.2 m (dp = 0.0025)", cmd, rows, image, note
+
+
+def cohesive_failure(ranks):
+    dp = 0.04
+    runs = {st: run(f"cohesive_failure_2d_{st}", "cohesive_failure_2d", ["--set", f"stabiliser={st}"], ranks)
+            for st in ("utvf", "tvf", "none")}
+    fig, ax = plt.subplots(3, 1, figsize=(10, 9))
+    rows = []
+    for a, (st, (frames, _, cmd)) in zip(ax, runs.items()):
+        deposit_panel(fig, a, frames[-1], frames[0], f"{st}, t = {frames[-1]['t']:.1f} s")
+        a.set_xlim(-0.1, 6.0)
+        last = list_frames(RUNS / f"cohesive_failure_2d_{st}")[-1]
+        m = tensile_instability(read_frame(last, walls=True))
+        rows.append((f"{st}: clustering / inner voids", f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}%",
+                     "0", "-", "<= 0.1% (utvf)"))
+        if st == "utvf":
+            crack = measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0)
+            rows.insert(0, ("crest crack behind the face [m]", f"{crack:.2f}", "1.2-1.5", "-", "[1.0, 1.7]"))
+            speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
+            rows.insert(1, ("final / peak max speed", f"{speeds[-1] / max(speeds):.3f}", "0", "-", "-"))
+            shown = cmd
+    image = save(fig, "cohesive_failure_2d.png")
+    note = ("Crest crack: the leftmost particle of the initial top layer that sank by more than 0.05 H. "
+            "The same command with `--set stabiliser=tvf` and `none` gives the other rows.")
+    return "Cohesive soil cut (dp = L/100)", shown, rows, image, note
+
+
 VALIDATIONS = {"elliptical_drop": elliptical_drop, "taylor_green": taylor_green, "dam_break_2d": dam_break,
-               "lid_driven_cavity": cavity, "rotating_square_patch": rotating_patch}
+               "lid_driven_cavity": cavity, "rotating_square_patch": rotating_patch,
+               "column_collapse_2d": column_collapse, "cohesive_failure_2d": cohesive_failure}
+MARK = "<!-- section: {} -->"
 
 
 def main():
@@ -193,18 +257,31 @@ def main():
     ap.add_argument("--only", nargs="*", choices=list(VALIDATIONS))
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
-    sections = []
+    page = DOCS / "VALIDATION.md"
+    sections = _existing_sections(page)
     for name in a.only or VALIDATIONS:
         title, cmd, rows, image, note = VALIDATIONS[name](a.ranks)
         table = "\n".join(f"| {' | '.join(r)} |" for r in rows)
-        sections.append(f"## {title}\n\n`{cmd}`\n\n| quantity | mpisph | reference | error | tolerance |\n"
-                        f"|---|---|---|---|---|\n{table}\n\n{note + chr(10) + chr(10) if note else ''}"
-                        f"![{title}](img/{image})\n")
+        sections[name] = (f"{MARK.format(name)}\n## {title}\n\n`{cmd}`\n\n"
+                          f"| quantity | mpisph | reference | error | tolerance |\n"
+                          f"|---|---|---|---|---|\n{table}\n\n{note + chr(10) + chr(10) if note else ''}"
+                          f"![{title}](img/{image})\n")
         print(f"{title}: done")
-    page = DOCS / "VALIDATION.md"
     head = ("# Validation\n\nWritten by `python scripts/validate.py` (each case on "
-            f"{a.ranks} ranks); the tests in `tests/test_validation.py` assert the same comparisons.\n\n")
-    page.write_text(head + "\n".join(sections))
+            f"{a.ranks} ranks; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
+            "`tests/test_validation.py` and `tests/test_validation_solids.py` assert the same comparisons.\n\n")
+    page.write_text(head + "\n".join(sections[k] for k in VALIDATIONS if k in sections))
+
+
+def _existing_sections(page):
+    """{name: text} of the sections of an existing page, by their markers."""
+    if not page.exists():
+        return {}
+    out = {}
+    for chunk in page.read_text().split("<!-- section: ")[1:]:
+        name = chunk.split(" -->", 1)[0]
+        out[name] = "<!-- section: " + chunk.rstrip("\n") + "\n"
+    return out
 
 
 if __name__ == "__main__":
