@@ -34,6 +34,19 @@ def pair_distance(x, i, j):
 
 
 @njit(cache=True)
+def unit_offset(x, i, j, e):
+    """Fill ``e`` with e_ij = (x_i - x_j)/|x_i - x_j| and return |x_i - x_j|."""
+    r = 0.0
+    for a in range(x.shape[1]):
+        e[a] = x[i, a] - x[j, a]
+        r += e[a] * e[a]
+    r = np.sqrt(r)
+    for a in range(x.shape[1]):
+        e[a] /= r
+    return r
+
+
+@njit(cache=True)
 def _cells(x, radius, origin):
     n, dim = x.shape
     c = np.empty((n, 3), dtype=np.int64)

@@ -33,9 +33,9 @@ from numba import njit
 
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw, w
-from ..neighbours import pair_distance
+from ..neighbours import pair_distance, unit_offset
 from ..particles import MOVING, WALL, Field, is_wall
-from .walls import relative_velocity, wall_relative_normal
+from .walls import velocity_jump, wall_relative_normal
 
 RIEMANN_ETA = 3.0
 
@@ -49,16 +49,6 @@ def equation_of_state(n, kind, rho, p, rho0, c0):
 
 
 @njit(cache=True)
-def _u_jump(i, j, v, kind, normal, e, dim, dv):
-    """(v_i - v_j) . e_ij with the wall's mirrored velocity when j is a wall."""
-    relative_velocity(i, j, v, kind, normal, dim, dv)
-    s = 0.0
-    for a in range(dim):
-        s += dv[a] * e[a]
-    return s
-
-
-@njit(cache=True)
 def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv):
     """Distance, partner pressure, mean density and normal velocity jump of pair (i, j).
 
@@ -66,13 +56,7 @@ def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv):
     states described above.
     """
     dim = xc.shape[1]
-    r = 0.0
-    for a in range(dim):
-        e[a] = xc[i, a] - xc[j, a]
-        r += e[a] * e[a]
-    r = np.sqrt(r)
-    for a in range(dim):
-        e[a] /= r
+    r = unit_offset(xc, i, j, e)
     if not is_wall(kind[j]):
         rho_j, p_j = rho[j], p[j]
     else:
@@ -80,7 +64,7 @@ def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv):
         for a in range(dim):
             gr -= gravity[a] * e[a] * r
         rho_j, p_j = rho[i], p[i] + rho[i] * max(0.0, gr)
-    return r, p_j, 0.5 * (rho[i] + rho_j), _u_jump(i, j, v, kind, normal, e, dim, dv)
+    return r, p_j, 0.5 * (rho[i] + rho_j), velocity_jump(i, j, v, kind, normal, e, dim, dv)
 
 
 @njit(cache=True)

@@ -34,25 +34,12 @@ from numba import njit
 
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw
+from ..neighbours import unit_offset
 from ..particles import MOVING, Field, is_wall
 from .fluid import continuity, prior_acceleration
-from .walls import relative_velocity
+from .walls import relative_velocity, velocity_jump
 
 DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
-
-
-@njit(cache=True)
-def _unit_offset(xc, i, j, e):
-    """Fill e with e_ij and return r_ij."""
-    dim = xc.shape[1]
-    r = 0.0
-    for a in range(dim):
-        e[a] = xc[i, a] - xc[j, a]
-        r += e[a] * e[a]
-    r = np.sqrt(r)
-    for a in range(dim):
-        e[a] /= r
-    return r
 
 
 @njit(cache=True)
@@ -92,7 +79,7 @@ def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
         A[:, :] = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = _unit_offset(xc, i, j, e)
+            r = unit_offset(xc, i, j, e)
             f = -mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
             for a in range(dim):
                 for b in range(dim):
@@ -113,7 +100,7 @@ def velocity_gradient(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma
         L[i, :, :] = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = _unit_offset(xc, i, j, e)
+            r = unit_offset(xc, i, j, e)
             f = mass[j] / rho[j] * dw(r, h, sigma, kernel)
             relative_velocity(i, j, v, kind, normal, dim, dv)
             for a in range(dim):
@@ -140,13 +127,10 @@ def stress_acceleration(n, start, nbr, xc, v, rho, stress, mass, kind, normal,
             dv_dt[i, a] = prior[i, a]
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = _unit_offset(xc, i, j, e)
+            r = unit_offset(xc, i, j, e)
             wall = is_wall(kind[j])
             k = i if wall else j
-            relative_velocity(i, j, v, kind, normal, dim, dv)
-            u_jump = 0.0
-            for a in range(dim):
-                u_jump += dv[a] * e[a]
+            u_jump = velocity_jump(i, j, v, kind, normal, e, dim, dv)
             beta = 1.0 if eta <= 0.0 else min(eta * max(-u_jump / c0, 0.0), 1.0)
             dissipation = beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
             f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / rho[i]

@@ -35,3 +35,13 @@ def relative_velocity(i, j, v, kind, normal, dim, out):
         vn = wall_relative_normal(i, j, v, normal, dim)
         for a in range(dim):
             out[a] = 2.0 * vn * normal[j, a]
+
+
+@njit(cache=True)
+def velocity_jump(i, j, v, kind, normal, e, dim, dv):
+    """u_jump = (v_i - v_j) . e_ij, the wall's mirrored velocity when j is a wall; ``dv`` gets v_i - v_j."""
+    relative_velocity(i, j, v, kind, normal, dim, dv)
+    s = 0.0
+    for a in range(dim):
+        s += dv[a] * e[a]
+    return s
