@@ -33,6 +33,7 @@ from .observables import global_observables
 from .parallel.decomposition import SlabDecomposition, migrate, moving_coordinates
 from .parallel.halo import Halo
 from .particles import MOVING
+from .physics.solid import correction_matrix
 from .stabilisers.transport_velocity import STABILISERS
 from .timing import PhaseTimer
 
@@ -65,7 +66,7 @@ class Simulation:
         self.advection_steps = 0
         self.dt = 0.0
         self.timer = PhaseTimer()
-        self.start = self.nbr = self.xc = None
+        self.start = self.nbr = self.xc = self._B = None
 
     # -- one advection step -------------------------------------------------
 
@@ -82,6 +83,7 @@ class Simulation:
             self.halo.build(pa)
         with self.timer("neighbours"):
             self.xc = pa.x.copy()
+            self._B = None
             self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned,
                                                    self.support, self.case.domain[0])
         with self.timer("physics"):
@@ -89,6 +91,15 @@ class Simulation:
                 surface.classify(self)
             self.scheme.configure(self)
             self.stabiliser.apply(self)
+
+    def correction_matrices(self):
+        """B of 000_ Eq. 24 for the owned particles on this configuration, computed once when first asked."""
+        if self._B is None:
+            pa = self.particles
+            self._B = np.zeros((pa.n_owned, pa.dim, pa.dim))
+            correction_matrix(pa.n_owned, self.start, self.nbr, self.xc, pa.mass, pa.rho, pa.kind,
+                              *self.kernel_args, self._B)
+        return self._B
 
     def _check(self):
         """Stop with step, time, rank and particle id on NaN or a lost particle."""

@@ -185,10 +185,9 @@ class SolidScheme:
     def configure(self, s):
         """Once per advection step: correction matrices on the frozen positions, gravity."""
         pa, k = s.particles, s.kernel_args
-        n, dim = pa.n_owned, pa.dim
-        self.B = np.zeros((n, dim, dim))
+        n = pa.n_owned
+        self.B = s.correction_matrices()
         self.L = np.zeros((n, 3, 3))
-        correction_matrix(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *k, self.B)
         prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
                            self.gravity, 0.0, *k, pa.prior)
 

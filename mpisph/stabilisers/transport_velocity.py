@@ -40,7 +40,6 @@ from numba import njit
 from .. import surface
 from ..kernels import dw
 from ..particles import MOVING
-from ..physics.solid import correction_matrix
 
 LIMITER_C = 1000.0
 LIMITER_THRESHOLD = 5e-4
@@ -150,9 +149,7 @@ class TransportVelocity:
     def apply(self, s):
         pa = s.particles
         n = pa.n_owned
-        B = np.zeros((n, pa.dim, pa.dim))
-        if self.unified:
-            correction_matrix(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *s.kernel_args, B)
+        B = s.correction_matrices() if self.unified else np.zeros((n, pa.dim, pa.dim))
         consistency_shift(n, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
                           B, self.unified, *s.kernel_args)
 
