@@ -16,7 +16,7 @@ def observable_names(dim, scheme=None, probes=()):
     """Columns of diagnostics.csv."""
     ang = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
-    names += list(getattr(getattr(scheme, "model", None), "observable_names", ()))
+    names += list(getattr(scheme, "observable_names", ()))
     for probe in probes:
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     return names

@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from ..kernels import dw
-from ..particles import MOVING, Field, is_wall
+from ..particles import Field, is_wall
 from .solid import material_pressure
 
 DIFFUSION_ZETA = 0.1
@@ -163,7 +163,7 @@ class DruckerPragerModel:
 
     riemann_continuity = 1.0  # Eq. 16
     fields = (Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
-    observable_names = ("potential_energy",)
+    observable_names = ()
 
     def __init__(self, material, dim, gravity):
         self.material = material
@@ -187,8 +187,3 @@ class DruckerPragerModel:
                          m.k0, m.c0, *s.kernel_args, self.diffusion)
         drucker_prager_update(n, pa.kind, L, self.diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)
-
-    def energies(self, pa, n, gravity):
-        """Potential energy -sum m g.x of the moving particles."""
-        moving = pa.kind[:n] == MOVING
-        return {"potential_energy": float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ gravity)))}

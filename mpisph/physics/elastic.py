@@ -15,7 +15,7 @@ Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
 import numpy as np
 from numba import njit
 
-from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
+from ..particles import WALL, WALL_SLIP, Field, is_wall
 
 
 @njit(cache=True)
@@ -63,7 +63,7 @@ class ElasticModel:
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
     fields = (Field("shear_stress", (3, 3), np.float64, "shear (deviatoric) stress [Pa]"),)
-    observable_names = ("strain_energy", "potential_energy")
+    observable_names = ("strain_energy",)
 
     def __init__(self, material):
         self.material = material
@@ -79,13 +79,11 @@ class ElasticModel:
         pa = s.particles
         shear_stress_update(pa.n_owned, pa.kind, L, self.material.G, pa.dim, dt, pa.shear_stress)
 
-    def energies(self, pa, n, gravity):
-        """Strain energy sum V (s:s/4G + p^2/2K) (material) and potential energy -sum m g.x (moving)."""
+    def energies(self, pa, n):
+        """Strain energy sum V (s:s/4G + p^2/2K) of the material particles."""
         m = self.material
         material = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))
         vol = pa.mass[:n] / pa.rho[:n]
         s = pa.shear_stress[:n]
         dens = np.sum(s * s, axis=(1, 2)) / (4.0 * m.G) + pa.p[:n] ** 2 / (2.0 * m.K)
-        moving = pa.kind[:n] == MOVING
-        return {"strain_energy": float(np.sum((vol * dens)[material])),
-                "potential_energy": float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ gravity)))}
+        return {"strain_energy": float(np.sum((vol * dens)[material]))}

@@ -155,7 +155,8 @@ class SolidScheme:
     The model (``ElasticModel`` or ``DruckerPragerModel``) provides: its
     extra fields, ``eta`` of the momentum limiter, ``riemann_continuity``
     (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
-    current density or stress), ``update_stress(s, L, dt)`` and ``energies``.
+    current density or stress), ``update_stress(s, L, dt)``, and the names and
+    values of its own energies (``observable_names``, ``energies(pa, n)``, if any).
     """
 
     needs_surface = True
@@ -213,9 +214,17 @@ class SolidScheme:
         self.model.update_stress(s, self.L, dt)  # reads rho of neighbours: before density_half
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
 
+    @property
+    def observable_names(self):
+        return tuple(self.model.observable_names) + ("potential_energy",)
+
     def observables(self, pa, n):
-        """Extra global sums for diagnostics.csv, over the owned particles [0, n)."""
-        return self.model.energies(pa, n, self.gravity)
+        """Extra sums for diagnostics.csv over the owned particles [0, n): the model's energies
+        and the potential energy -sum m g.x of the moving particles."""
+        moving = pa.kind[:n] == MOVING
+        out = self.model.energies(pa, n) if hasattr(self.model, "energies") else {}
+        out["potential_energy"] = float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ self.gravity)))
+        return out
 
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles: von Mises, vertical stress, speed."""
