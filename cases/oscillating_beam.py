@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, ElasticSolid, Param
+from mpisph.case import SOLID_PARAMS, Body, Case, ElasticSolid, Param
 from mpisph.geometry import box
 
 KL = 1.875  # first root of cos(kL) cosh(kL) = -1
@@ -15,8 +15,7 @@ PARAMS = {
     "E": Param(2.0e6, "Pa", "Young's modulus", positive=True),
     "nu": Param(0.3975, "-", "Poisson's ratio", positive=True),
     "v_f": Param(0.05, "-", "initial tip speed over the sound speed (000_ Eq. 45)", positive=True),
-    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37)",
-                        choices=("none", "tvf", "utvf")),
+    **SOLID_PARAMS,
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
     "diagnostics_every": Param(5, "steps", "advection steps between rows of diagnostics.csv", positive=True),
@@ -32,8 +31,17 @@ def mode_shape(x, L):
 
 def setup(p):
     dp = p.H / p.H_over_dp
-    clamp = int(np.ceil(2 * p.h_factor)) * dp  # the root is held over one kernel support
-    x = box((-clamp, -p.H / 2), (p.L, p.H / 2), dp, "the beam")
+    # The root is held as in the paper's set-up (Fig. 10, after Gray et al. 2001):
+    # the beam continues into a clamp that also covers it above and below, so the
+    # particles at the root see full, fixed support; one kernel support of layers is
+    # enough, as clamped particles farther away never reach the free beam.
+    grip = int(np.ceil(2 * p.h_factor)) * dp
+    half = p.H / 2
+    x = np.concatenate([
+        box((-grip, -half), (p.L, half), dp, "the beam"),
+        box((-grip, half), (0.0, half + grip), dp, "the clamp"),
+        box((-grip, -half - grip), (0.0, -half), dp, "the clamp"),
+    ])
     material = ElasticSolid(rho0=p.rho0, E=p.E, nu=p.nu)
     free = x[:, 0] > 0.0
     velocity = np.zeros_like(x)
@@ -41,7 +49,7 @@ def setup(p):
     tip = int(np.argmin(np.hypot(x[:, 0] - p.L, x[:, 1])))
     return Case(
         dim=2,
-        domain=((-clamp - p.L, -p.L), (2 * p.L, p.L)),
+        domain=((-grip - p.L, -p.L), (2 * p.L, p.L)),
         dp=dp,
         material=material,
         bodies=[Body("beam", x, velocity=velocity, clamped=~free)],

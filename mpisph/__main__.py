@@ -88,7 +88,8 @@ def cmd_report(paths):
         periods = [hi[a] - lo[a] if case.periodic[a] else 0.0 for a in range(case.dim)]
         m = tensile_instability(frame, lo, periods)
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%, "
-              f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%")
+              f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
+              f"closest pair {m['min_spacing']:.3f} dp")
 
 
 def cmd_plot(out_dir, png_path=None):

@@ -1,6 +1,6 @@
 """A measure of tensile instability computed from a frame.
 
-Two symptoms, as fractions of the moving particles:
+Two symptoms, as fractions of the moving particles, and one spacing:
 
 - clustering: the nearest other particle (walls included) is closer than
   0.5 dp;
@@ -9,7 +9,11 @@ Two symptoms, as fractions of the moving particles:
   3D; the two particle layers under a free surface are not, and a gap wider
   than about 4 h counts as free surface: a crack) yet its position divergence (000_ Eq. 31, walls included) is below
   the free-surface threshold 0.75 d, i.e. a hole opened next to it inside
-  the body.
+  the body;
+- min_spacing: the smallest nearest-neighbour distance over dp, a graded
+  early sign (an undisturbed lattice gives 1; particles pairing up under
+  tension in an uncorrected beam come to about 0.55 before any pair is
+  closer than 0.5 dp).
 
 The spacing dp is recovered from the particle volumes, h and the kernel from
 the frame's parameters; periodic axes (lengths given by the caller) get
@@ -78,7 +82,7 @@ def _with_periodic_images(x, arrays, lo, lengths, radius):
 
 
 def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
-    """{n, dp, clustering, inner_voids, surface} from ``read_frame(path, walls=True)``.
+    """{n, dp, clustering, inner_voids, surface, min_spacing} from ``read_frame(path, walls=True)``.
 
     ``periodic_lengths`` has the period of each axis (0 where not periodic),
     ``domain_lo`` the domain's lower corner.
@@ -110,4 +114,5 @@ def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
         "clustering": float(np.mean(nearest[:n_moving] < CLUSTER_DISTANCE * dp)),
         "inner_voids": float(np.mean(low & surrounded[:n_moving])),
         "surface": float(np.mean(low & ~surrounded[:n_moving])),
+        "min_spacing": float(nearest[:n_moving].min() / dp),
     }

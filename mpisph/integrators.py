@@ -22,7 +22,6 @@ from numba import njit
 from .particles import MOVING, is_wall
 
 CFL_ADVECTION = 0.25
-CFL_ACOUSTIC = 0.6
 CFL_SINGLE = 0.4
 
 
@@ -83,6 +82,6 @@ def advection_dt(h, vmax, nu, u_ref):
     return CFL_ADVECTION * h / max(vmax, nu / h, u_ref)
 
 
-def acoustic_dt(h, vmax, c0, cfl=CFL_ACOUSTIC):
-    """001_ Eq. 11 (cfl 0.6), or 000_ Eq. 38 with cfl 0.4."""
+def acoustic_dt(h, vmax, c0, cfl):
+    """001_ Eq. 11 (fluids, cfl 0.6) or 000_ Eq. 38 (solids and single stepping, cfl 0.4)."""
     return cfl * h / (c0 + vmax)

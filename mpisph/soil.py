@@ -8,13 +8,13 @@ floor is ``floor`` long.
 
 import numpy as np
 
-from .case import Body, Case, DruckerPrager, Param, Wall
+from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall
 from .geometry import box, box_walls
 from .physics.drucker_prager import geostatic_stress
 
 
 def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
-    """Typed parameters of the soil with the given defaults, plus gravity and the stabiliser."""
+    """Typed parameters of the soil with the given defaults, plus gravity and the solid scheme's."""
     return {
         "rho0": Param(rho0, "kg/m^3", "bulk density", positive=True),
         "E": Param(E, "Pa", "Young's modulus", positive=True),
@@ -23,8 +23,7 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
         "phi": Param(phi, "deg", "friction angle"),
         "psi": Param(psi, "deg", "dilatancy angle"),
         "g": Param(9.8, "m/s^2", "gravity", positive=True),
-        "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37)",
-                            choices=("none", "tvf", "utvf")),
+        **SOLID_PARAMS,
     }
 
 

@@ -159,7 +159,7 @@ class Simulation:
             t_next_frame = min((self.frame_index + 1) * interval, t_end)
             t_stop = min(self.t + self._advection_dt(vmax, c0, nu), t_next_frame)
             while True:
-                dt = integrators.acoustic_dt(self.h, vmax, c0)
+                dt = integrators.acoustic_dt(self.h, vmax, c0, self.scheme.acoustic_cfl)
                 if self.params["time_stepping"] == "single" or self.t + dt >= t_stop:
                     dt, last = t_stop - self.t, True
                 else:

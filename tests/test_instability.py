@@ -23,6 +23,7 @@ def test_regular_lattice_is_clean():
     m = tensile_instability(lattice_frame())
     assert m["dp"] == pytest.approx(0.01)
     assert m["clustering"] == 0.0 and m["inner_voids"] == 0.0
+    assert m["min_spacing"] == pytest.approx(1.0)
     # the outermost layer is free surface (the second one stays above 0.75 d on a lattice)
     assert m["surface"] == pytest.approx((900 - 784) / 900)
 
@@ -38,6 +39,7 @@ def test_hole_inside_is_a_void():
 def test_close_pairs_are_clusters():
     m = tensile_instability(lattice_frame(squeeze=[100, 200, 300]))
     assert m["clustering"] * m["n"] == pytest.approx(6)  # three pairs
+    assert m["min_spacing"] == pytest.approx(0.3)
 
 
 def test_report_command(tmp_path):
@@ -45,4 +47,4 @@ def test_report_command(tmp_path):
     assert r.returncode == 0, r.stderr
     r = mpirun_mpisph(["report", tmp_path / "frame_00001.vtkhdf"])
     assert r.returncode == 0, r.stderr
-    assert "clustering 0.000%, inner voids 0.000%, free surface 0.00%" in r.stdout
+    assert "clustering 0.000%, inner voids 0.000%, free surface 0.00%, closest pair" in r.stdout

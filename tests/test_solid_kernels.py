@@ -9,7 +9,7 @@ from mpisph.kernels import KERNELS, normalisation
 from mpisph.materials import DruckerPrager, ElasticSolid
 from mpisph.neighbours import neighbour_lists
 from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
-from mpisph.physics.solid import correction_matrix, velocity_gradient
+from mpisph.physics.solid import correction_matrix, stress_acceleration, velocity_gradient
 
 DP = 0.01
 H = 1.3 * DP
@@ -53,6 +53,34 @@ def test_velocity_gradient_of_a_linear_field_is_exact_up_to_the_corners():
     corner = np.minimum(x[:, 0], 0.12 - x[:, 0]) + np.minimum(x[:, 1], 0.10 - x[:, 1]) < 2.5 * DP
     np.testing.assert_allclose(L[~corner, :2, :2], np.broadcast_to(A, L[~corner, :2, :2].shape), atol=1e-9)
     assert np.all(np.isfinite(L)) and np.all(L[:, 2, :] == 0.0)
+
+
+def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
+    """Power of the shear forces = minus the stress power on L of Eq. 23, on a disordered block
+    with free edges (B far from I there): kinetic + strain energy is conserved in space."""
+    rng = np.random.default_rng(3)
+    x, kind, mass, rho, start, nbr = block()
+    x = x + rng.uniform(-0.2, 0.2, x.shape) * DP
+    start, nbr = neighbour_lists(x, np.arange(len(x)), kind, len(x), 2 * H, np.zeros(2) - DP)
+    rho = rho * rng.uniform(0.95, 1.05, len(x))
+    n = len(x)
+    v = rng.normal(size=(n, 2))
+    shear = rng.normal(size=(n, 3, 3)) * 1e3
+    shear = shear + shear.transpose(0, 2, 1)
+    shear -= np.trace(shear, axis1=1, axis2=2)[:, None, None] / 3 * np.eye(3)
+    shear[:, 2, :2] = shear[:, :2, 2] = 0.0
+    B = corrections(x, kind, mass, rho, start, nbr)
+    args = (H, normalisation(KERNEL, H, 2), KERNEL)
+    L = np.zeros((n, 3, 3))
+    velocity_gradient(n, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B, *args, L)
+    acc = np.zeros((n, 2))
+    # c0 = 0: no Riemann dissipation; p = 0: the pure shear part
+    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), shear, B, mass, kind, np.zeros_like(x),
+                        0.0, -1.0, *args, np.zeros((n, 2)), acc)
+    power = np.sum(mass[:, None] * v * acc)
+    stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))
+    assert abs(stress_power) > 1.0
+    assert power == pytest.approx(-stress_power, rel=1e-10)
 
 
 def test_degenerate_neighbourhood_gets_a_finite_correction():

@@ -3,10 +3,11 @@
 Pressure from the equation of state p = c0^2 (rho - rho0) with c0 of Eq. 6
 (Eqs. 3, 5); the shear stress is integrated from its rate (Eqs. 7-8),
 
-    dsigma^s/dt = 2 G (D - tr(D)/d I) + sigma^s W^T + W sigma^s,
+    dsigma^s/dt = 2 G (D - tr(D)/3 I) + sigma^s W^T + W sigma^s,
 
 with D and W the symmetric and skew parts of the corrected velocity gradient
-(Eqs. 9, 23). The rotation terms (the Jaumann rate of Eq. 10) keep the rate
+(Eqs. 9, 23); in 2D, D is plane strain (D_zz = 0) and sigma^s_zz evolves,
+so the in-plane stiffness is E / (1 - nu^2) as in the beam theory of Eq. 47. The rotation terms (the Jaumann rate of Eq. 10) keep the rate
 objective when the body rotates, as the beam's root section does; for small
 rotations they vanish and the rate is Eq. 8. Continuity is Eq. 21 (no
 Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
@@ -32,15 +33,13 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
 
 
 @njit(cache=True)
-def shear_stress_update(n, kind, L, G, dim, dt, shear):
-    """sigma^s += dt [2 G dev_d(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation)."""
+def shear_stress_update(n, kind, L, G, dt, shear):
+    """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation)."""
     rate = np.empty((3, 3))
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        trace = 0.0
-        for a in range(dim):
-            trace += L[i, a, a]
+        trace = L[i, 0, 0] + L[i, 1, 1] + L[i, 2, 2]
         for a in range(3):
             for b in range(3):
                 d_ab = 0.5 * (L[i, a, b] + L[i, b, a])
@@ -50,8 +49,8 @@ def shear_stress_update(n, kind, L, G, dim, dt, shear):
                     w_bc = 0.5 * (L[i, b, c] - L[i, c, b])
                     r += shear[i, a, c] * w_bc + w_ac * shear[i, c, b]
                 rate[a, b] = r
-        for a in range(dim):
-            rate[a, a] -= 2.0 * G * trace / dim
+        for a in range(3):
+            rate[a, a] -= 2.0 * G * trace / 3.0
         for a in range(3):
             for b in range(3):
                 shear[i, a, b] += dt * rate[a, b]
@@ -77,7 +76,7 @@ class ElasticModel:
 
     def update_stress(self, s, L, dt):
         pa = s.particles
-        shear_stress_update(pa.n_owned, pa.kind, L, self.material.G, pa.dim, dt, pa.shear_stress)
+        shear_stress_update(pa.n_owned, pa.kind, L, self.material.G, dt, pa.shear_stress)
 
     def energies(self, pa, n):
         """Strain energy sum V (s:s/4G + p^2/2K) of the material particles."""

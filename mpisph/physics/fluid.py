@@ -182,6 +182,8 @@ class FluidScheme:
     the density rate for the next half step.
     """
 
+    acoustic_cfl = 0.6  # 001_ Eq. 11
+
     fields = (
         Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
         Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
