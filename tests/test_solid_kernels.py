@@ -75,7 +75,7 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
     velocity_gradient(n, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B, *args, L)
     acc = np.zeros((n, 2))
     # c0 = 0: no Riemann dissipation; p = 0: the pure shear part
-    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), shear, B, mass, kind, np.zeros_like(x),
+    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), shear, B, True, mass, kind, np.zeros_like(x),
                         0.0, -1.0, *args, np.zeros((n, 2)), acc)
     power = np.sum(mass[:, None] * v * acc)
     stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))

@@ -49,3 +49,20 @@ def test_beam_first_period_and_energy(tmp_path, v_f):
     m = tensile_instability(read_frame(list_frames(tmp_path)[-1], walls=True))
     assert m["clustering"] == 0.0 and m["inner_voids"] == 0.0
     assert m["min_spacing"] > 0.75  # without correction pairs close in to 0.55 dp by t = 0.04 s
+
+
+def test_cohesive_cut_fails_without_tensile_instability_only_with_utvf(tmp_path):
+    """Sec. 5.2 at dp = L/50 (the validation script runs L/100): UTVF gives the crest crack
+    1.0-1.7 m behind the face with no clustering or voids at 2 s; without correction clustering is
+    at least ten times the UTVF figure (counted as at least one particle); TVF still clusters."""
+    dp = 0.08
+    m = {}
+    for st in ("utvf", "none", "tvf"):
+        frames, _ = run("cohesive_failure_2d", ["--set", f"dp={dp}", "--set", f"stabiliser={st}"], tmp_path / st)
+        assert frames[-1]["t"] == pytest.approx(2.0)
+        m[st] = tensile_instability(read_frame(list_frames(tmp_path / st)[-1], walls=True))
+        if st == "utvf":
+            assert 1.0 <= measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0) <= 1.7
+    assert m["utvf"]["clustering"] <= 0.001 and m["utvf"]["inner_voids"] == 0.0
+    assert m["none"]["clustering"] >= 10 * max(m["utvf"]["clustering"], 1 / m["utvf"]["n"])
+    assert m["tvf"]["clustering"] > m["utvf"]["clustering"] and m["tvf"]["min_spacing"] < 0.5

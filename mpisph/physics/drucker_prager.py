@@ -162,6 +162,7 @@ class DruckerPragerModel:
     """Constitutive part of ``SolidScheme`` for ``DruckerPrager``."""
 
     riemann_continuity = 1.0  # Eq. 16
+    corrected_shear_force = False  # Eq. 25 as printed (solid.py says why)
     fields = (Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
     observable_names = ()
 

@@ -61,6 +61,7 @@ class ElasticModel:
 
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
+    corrected_shear_force = True  # solid.py: conserves kinetic + strain energy
     fields = (Field("shear_stress", (3, 3), np.float64, "shear (deviatoric) stress [Pa]"),)
     observable_names = ("strain_energy",)
 
