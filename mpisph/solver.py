@@ -71,6 +71,13 @@ class Simulation:
     # -- one advection step -------------------------------------------------
 
     def _configure(self):
+        self._configure_geometry()
+        with self.timer("physics"):
+            self.scheme.configure(self)
+            self.stabiliser.apply(self)
+
+    def _configure_geometry(self):
+        """Migration, halo, neighbour lists and free-surface classes of the current positions."""
         pa = self.particles
         self._check()
         with self.timer("exchange"):
@@ -86,11 +93,9 @@ class Simulation:
             self._B = None
             self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned,
                                                    self.support, self.case.domain[0])
-        with self.timer("physics"):
-            if "surface" in pa.arrays:
+        if "surface" in pa.arrays:
+            with self.timer("physics"):
                 surface.classify(self)
-            self.scheme.configure(self)
-            self.stabiliser.apply(self)
 
     def correction_matrices(self):
         """B of 000_ Eq. 24 for the owned particles on this configuration, computed once when first asked."""
@@ -151,6 +156,7 @@ class Simulation:
         c0, nu = self.scheme.speeds()
         wall0, t0, step0 = wallclock.perf_counter(), self.t, self.step
         if self.step == 0:
+            self._configure_geometry()  # the surface classes of the first frame
             self.write_frame()
             self.diagnostics.record(global_observables(self))
         while self.t < t_end:
