@@ -16,10 +16,10 @@
 #      records a finished install; a quick import check confirms it.
 #
 # The demo runs the granular column collapse (column_collapse_2d with
-# --set dp=0.004, 1-2 min on 2 ranks) and ends with `python -m mpisph plot`,
+# --set dp=0.005, about a minute on 2 ranks) and ends with `python -m mpisph plot`,
 # which prints the path of a PNG of the deposit.
 #
-# Environment knobs: MPISPH_DEMO_CASE (default column_collapse_2d; dp=0.004 is
+# Environment knobs: MPISPH_DEMO_CASE (default column_collapse_2d; dp=0.005 is
 # set only for that case), MPISPH_DEMO_OUT (default runs/CASE), MPISPH_PYTHON
 # (python used to create the venv, default python3).
 set -euo pipefail
@@ -276,7 +276,7 @@ case "$MODE" in
         # coarser than the case's default 0.002: 1250 particles, 1-2 min on 2 ranks;
         # extra arguments come later, so `demo --set dp=0.002` still wins
         if [ "$case_name" = column_collapse_2d ]; then
-            case_args=(--set dp=0.004)
+            case_args=(--set dp=0.005)
         fi
         log "running demo: mpirun -n 2 .venv/bin/python -m mpisph $case_name ${case_args[*]} --out $out_dir $*"
         mpirun -n 2 "$VPY" -m mpisph "$case_name" "${case_args[@]}" --out "$out_dir" "$@"
