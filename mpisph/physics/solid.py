@@ -21,10 +21,11 @@ eta = 20 d (000_ Sec. 3.1.3).
 One deliberate difference from the paper, for elastic solids only: Eq. 22
 sums (s_i + s_j) grad W without B. The shear stress is integrated from the
 corrected gradient of Eq. 23, so that force does less work than the stress
-stores wherever B is not the identity (at free surfaces, where bending stresses peak): the
-oscillating beam then gains about 12% of spurious strain energy per quarter
-period. With B_i on the shear part the pair sum is the exact adjoint of Eq. 23,
-sum_i m_i v_i . dv_i/dt = -sum_i V_i s_i : L_i, so kinetic plus strain energy
+stores wherever B is not the identity (at free surfaces, where bending
+stresses peak): the oscillating beam then gains about 12% of spurious strain
+energy per quarter period. With B_i on the shear part the pair sum is the
+exact adjoint of Eq. 23, sum_i m_i v_i . dv_i/dt = -sum_i V_i s_i : L_i
+(tests/test_solid_kernels.py), so kinetic plus strain energy
 is conserved by the spatial discretisation (linear momentum still is: the
 pair force is antisymmetric). The pressure part stays uncorrected, the
 adjoint of continuity (Eqs. 16, 21). Granular materials keep Eq. 25 as
@@ -184,8 +185,8 @@ class SolidScheme:
 
     The model (``ElasticModel`` or ``DruckerPragerModel``) provides: its
     extra fields, ``eta`` of the momentum limiter, ``corrected_shear_force``
-    (B on the shear part of the momentum sum, module docstring), ``riemann_continuity``
-    (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
+    (B on the shear part of the momentum sum, module docstring),
+    ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
     current density or stress), ``update_stress(s, L, dt)``, and the names and
     values of its own energies (``observable_names``, ``energies(pa, n)``, if any).
     """
