@@ -1,8 +1,9 @@
 """Solid cases against their references (000_ Secs. 4.3 and 5.1; issue 3's tolerances).
 
-The column collapse runs at dp = 0.005 m (800 particles) and the beam at
-H/dp = 10 to stay short; the validation script runs the paper's resolutions. Runs are bitwise identical on
-any rank count (test_rank_agreement.py).
+The column collapse runs at dp = 0.005 m (800 particles), the beam at
+H/dp = 10 and the cohesive cut at dp = L/50 to stay short; the validation
+script runs the paper's resolutions. Runs are bitwise identical on any rank
+count (test_rank_agreement.py).
 """
 
 import numpy as np
@@ -41,7 +42,7 @@ def test_beam_first_period_and_energy(tmp_path, v_f):
     """UTVF beam at H/dp = 10 (H/dp = 20 and 30 in scripts/validate.py): first period within 8 % of
     0.2541 s, kinetic + strain energy kept within 2 % over the period, no clustering or voids."""
     _, diag = run("oscillating_beam", ["--set", "H_over_dp=10", "--set", f"v_f={v_f}",
-                                            "--t-end", "0.3", "--output-interval", "0.1"], tmp_path)
+                                       "--t-end", "0.3", "--output-interval", "0.1"], tmp_path)
     period = measure.first_period(diag["t"], diag["tip_uy"])
     assert period == pytest.approx(references.beam_period(), rel=0.08)
     energy = diag["kinetic_energy"] + diag["strain_energy"]
