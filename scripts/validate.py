@@ -290,14 +290,14 @@ def oscillating_beam(ranks, h_over_dp=30):
     ax[0].legend(fontsize=8)
     for k, st in enumerate(("utvf", "tvf", "none")):
         name = f"oscillating_beam_10_{st}"
-        _, diag, shown = run(name, "oscillating_beam", ["--set", "H_over_dp=10", "--set", "v_f=0.05",
-                                                        "--set", f"stabiliser={st}", "--t-end", "1.0",
-                                                        "--output-interval", "0.05"], ranks)
+        frames, diag, shown = run(name, "oscillating_beam", ["--set", "H_over_dp=10", "--set", "v_f=0.05",
+                                                             "--set", f"stabiliser={st}", "--t-end", "1.0",
+                                                             "--output-interval", "0.05"], ranks)
         energy = diag["kinetic_energy"] + diag["strain_energy"]
         ax[1].plot(diag["t"], energy / energy[0], label=st)
-        files = list_frames(RUNS / name)
-        at = min(files, key=lambda f: abs(read_frame(f)["t"] - 0.35))
-        beam_panel(fig, ax[2 + k], read_frame(at, walls=True), f"{st}, t = 0.35 s")
+        files = list_frames(RUNS / name)  # in the order of ``frames``; re-read with the clamp for the panels
+        at = int(np.argmin([abs(f["t"] - 0.35) for f in frames]))
+        beam_panel(fig, ax[2 + k], read_frame(files[at], walls=True), f"{st}, t = 0.35 s")
         ax[2 + k].set_xlim(-0.01, 0.22)
         m = tensile_instability(read_frame(files[-1], walls=True))
         rows.append((f"{st}, H/dp = 10, v_f = 0.05: energy at 1 s / initial", f"{energy[-1] / energy[0]:.3f}",
