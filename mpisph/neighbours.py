@@ -23,9 +23,19 @@ def neighbour_lists(x, gid, kind, n_owned, radius, origin):
     return _build(x, kind, n_owned, float(radius), np.asarray(origin, dtype=np.float64), by_gid)
 
 
-@njit(cache=True)
+def cell_order(x, n, radius, origin):
+    """Permutation of the particles [0, n) that sorts them by cell of the search grid (x fastest).
+
+    Storing particles in this order keeps the neighbours of a particle close in memory; the sums
+    do not depend on it (lists are in canonical order).
+    """
+    c = _cells(x[:n], float(radius), np.asarray(origin, dtype=np.float64))
+    return np.lexsort((c[:, 0], c[:, 1], c[:, 2]))
+
+
+@njit(inline="always")
 def pair_distance(x, i, j):
-    """|x_i - x_j|."""
+    """|x_i - x_j| (inlined into the pair loops)."""
     r2 = 0.0
     for a in range(x.shape[1]):
         d = x[i, a] - x[j, a]
@@ -33,17 +43,21 @@ def pair_distance(x, i, j):
     return np.sqrt(r2)
 
 
-@njit(cache=True)
-def unit_offset(x, i, j, e):
-    """Fill ``e`` with e_ij = (x_i - x_j)/|x_i - x_j| and return |x_i - x_j|."""
-    r = 0.0
-    for a in range(x.shape[1]):
-        e[a] = x[i, a] - x[j, a]
-        r += e[a] * e[a]
-    r = np.sqrt(r)
-    for a in range(x.shape[1]):
-        e[a] /= r
-    return r
+@njit(inline="always")
+def pair_difference(a, i, j):
+    """a_i - a_j of a 2- or 3-vector field as three scalars (the third is 0 in 2D).
+
+    Pair loops work on scalars rather than scratch vectors: LLVM keeps them
+    in registers, and the same code serves 2D and 3D.
+    """
+    return a[i, 0] - a[j, 0], a[i, 1] - a[j, 1], (a[i, 2] - a[j, 2] if a.shape[1] == 3 else 0.0)
+
+
+@njit(inline="always")
+def pair_offset(x, i, j):
+    """x_i - x_j as three scalars (``pair_difference``) and |x_i - x_j|."""
+    d0, d1, d2 = pair_difference(x, i, j)
+    return d0, d1, d2, np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
 
 
 @njit(cache=True)
@@ -61,10 +75,8 @@ def _cells(x, radius, origin):
 def _build(x, kind, n_owned, radius, origin, by_gid):
     n, dim = x.shape
     c = _cells(x, radius, origin)
-    lo = np.empty(3, np.int64)
+    lo = np.zeros(3, np.int64)
     ext = np.ones(3, np.int64)
-    for a in range(3):
-        lo[a] = 0
     if n > 0:
         for a in range(dim):
             lo[a] = c[:, a].min()
@@ -74,7 +86,8 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
     for i in range(n):
         cell_id[i] = (c[i, 0] - lo[0]) + ext[0] * ((c[i, 1] - lo[1]) + ext[1] * (c[i, 2] - lo[2]))
 
-    # counting sort by cell, stable over particles taken in gid order
+    # counting sort by cell, stable over particles taken in gid order; positions copied in
+    # that order so that the candidates of a row of cells are contiguous in memory
     cell_start = np.zeros(ncell + 1, np.int64)
     for i in range(n):
         cell_start[cell_id[i] + 1] += 1
@@ -82,51 +95,61 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
         cell_start[k + 1] += cell_start[k]
     fill = cell_start[:-1].copy()
     sorted_idx = np.empty(n, np.int64)
+    xs = np.empty((n, 3))
     for k in range(n):
         i = by_gid[k]
-        sorted_idx[fill[cell_id[i]]] = i
+        s = fill[cell_id[i]]
+        sorted_idx[s] = i
+        for a in range(3):
+            xs[s, a] = x[i, a] if a < dim else 0.0
         fill[cell_id[i]] += 1
 
     r2max = radius * radius
     dz_lo = -1 if dim == 3 else 0
     dz_hi = 1 if dim == 3 else 0
     start = np.zeros(n_owned + 1, np.int64)
-    for sweep in range(2):
-        if sweep == 1:
-            for i in range(n_owned):
-                start[i + 1] += start[i]
-            index = np.empty(start[n_owned], np.int64)
-        else:
-            index = np.empty(0, np.int64)
-        for i in range(n_owned):
-            if is_wall(kind[i]):
+    index = np.empty(max(16, 24 * n_owned if dim == 2 else 80 * n_owned), np.int64)
+    count = 0
+    for i in range(n_owned):
+        start[i] = count
+        if is_wall(kind[i]):
+            continue
+        xi0 = x[i, 0]
+        xi1 = x[i, 1]
+        xi2 = x[i, 2] if dim == 3 else 0.0
+        cx = c[i, 0] - lo[0]
+        x_lo = max(cx - 1, 0)
+        x_hi = min(cx + 1, ext[0] - 1)
+        for dz in range(dz_lo, dz_hi + 1):
+            cz = c[i, 2] - lo[2] + dz
+            if cz < 0 or cz >= ext[2]:
                 continue
-            count = 0
-            for dz in range(dz_lo, dz_hi + 1):
-                cz = c[i, 2] - lo[2] + dz
-                if cz < 0 or cz >= ext[2]:
+            for dy in range(-1, 2):
+                cy = c[i, 1] - lo[1] + dy
+                if cy < 0 or cy >= ext[1]:
                     continue
-                for dy in range(-1, 2):
-                    cy = c[i, 1] - lo[1] + dy
-                    if cy < 0 or cy >= ext[1]:
-                        continue
-                    for dx in range(-1, 2):
-                        cx = c[i, 0] - lo[0] + dx
-                        if cx < 0 or cx >= ext[0]:
-                            continue
-                        k = cx + ext[0] * (cy + ext[1] * cz)
-                        for s in range(cell_start[k], cell_start[k + 1]):
-                            j = sorted_idx[s]
-                            if j == i:
-                                continue
-                            r2 = 0.0
-                            for a in range(dim):
-                                d = x[i, a] - x[j, a]
-                                r2 += d * d
-                            if r2 < r2max:
-                                if sweep == 1:
-                                    index[start[i] + count] = j
-                                else:
-                                    start[i + 1] += 1
-                                count += 1
-    return start, index
+                row = ext[0] * (cy + ext[1] * cz)
+                # the cells (cx - 1 .. cx + 1, cy, cz) are consecutive: one range of candidates
+                s0 = cell_start[row + x_lo]
+                s1 = cell_start[row + x_hi + 1]
+                if count + s1 - s0 > len(index):
+                    index = _grown(index, count + s1 - s0)
+                for s in range(s0, s1):
+                    # branch-free: always store, advance only for a neighbour (a hit is
+                    # too unpredictable for the branch predictor)
+                    d0 = xs[s, 0] - xi0
+                    d1 = xs[s, 1] - xi1
+                    d2 = xs[s, 2] - xi2
+                    j = sorted_idx[s]
+                    index[count] = j
+                    count += (d0 * d0 + d1 * d1 + d2 * d2 < r2max) & (j != i)
+    start[n_owned] = count
+    return start, index[:count]
+
+
+@njit(cache=True)
+def _grown(a, need):
+    """``a`` copied into an array at least twice as long and of at least ``need`` rows."""
+    b = np.empty(max(2 * len(a), need), a.dtype)
+    b[: len(a)] = a
+    return b

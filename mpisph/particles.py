@@ -8,6 +8,11 @@ fixed dummy wall particles have ``kind == WALL`` (no-slip) or ``WALL_SLIP``
 density and stress like the moving ones, but are held in place (the clamped
 root of a cantilever); moving and clamped particles are the *material*.
 
+Each field lives in a buffer with room to spare; ``arrays[name]`` is the view
+of its first n rows. A new halo or a migration then reuses the buffers and
+rewrites only the rows that change, instead of allocating every field anew
+each step.
+
 Fields are declared once with a per-particle shape (``()``, ``("dim",)`` or
 ``(3, 3)``); packing to and from flat float64 rows is what the parallel
 package uses to move particles and ghosts between ranks. Integer fields go
@@ -25,7 +30,7 @@ WALL_SLIP = 2  # fixed wall particle, free-slip
 CLAMPED = 3  # material particle held in place
 
 
-@njit(cache=True)
+@njit(inline="always")
 def is_wall(kind):
     """True for the fixed dummy wall kinds."""
     return kind == WALL or kind == WALL_SLIP
@@ -54,6 +59,9 @@ CORE_FIELDS = (
 )
 
 
+HEADROOM = 1.2  # buffers grow to this multiple of the rows needed
+
+
 class Particles:
     """Owned particles followed by ghosts, one numpy array per field."""
 
@@ -62,6 +70,7 @@ class Particles:
         self.fields = tuple(fields)
         self.arrays = arrays
         self.n_owned = n_owned
+        self._buffers = dict(arrays)
 
     @classmethod
     def empty(cls, dim, fields, n=0):
@@ -114,21 +123,29 @@ class Particles:
             a[start:start + n] = rows[:, col:col + w].reshape((n,) + a.shape[1:])
             col += w
 
+    def _resize(self, n_keep, n):
+        """Make every field n rows long, keeping its first ``n_keep`` rows."""
+        for name, buf in self._buffers.items():
+            if len(buf) < n:
+                new = np.empty((int(HEADROOM * n) + 1,) + buf.shape[1:], dtype=buf.dtype)
+                new[:n_keep] = buf[:n_keep]
+                self._buffers[name] = buf = new
+            self.arrays[name] = buf[:n]
+
     def set_ghost_count(self, n_ghost):
         """Keep the owned rows and make room for ``n_ghost`` ghost rows after them."""
-        n = self.n_owned
-        for f in self.fields:
-            old = self.arrays[f.name]
-            new = np.empty((n + n_ghost,) + old.shape[1:], dtype=old.dtype)
-            new[:n] = old[:n]
-            self.arrays[f.name] = new
+        self._resize(self.n_owned, self.n_owned + n_ghost)
 
-    def reset(self, n_owned):
-        """Make room for ``n_owned`` new owned rows and no ghosts; the old rows are dropped."""
-        for f in self.fields:
-            old = self.arrays[f.name]
-            self.arrays[f.name] = np.empty((n_owned,) + old.shape[1:], dtype=old.dtype)
-        self.n_owned = n_owned
+    def keep_owned(self, keep, n_new):
+        """Keep the owned rows ``keep``, in that order, and make room for ``n_new`` owned rows
+        after them; ghosts are dropped. ``keep`` = all rows in a new order reorders them."""
+        n_keep = len(keep)
+        if n_keep < self.n_owned or np.any(keep != np.arange(n_keep)):
+            for name in self._buffers:
+                a = self.arrays[name]
+                a[:n_keep] = a[keep]
+        self._resize(n_keep, n_keep + n_new)
+        self.n_owned = n_keep + n_new
 
     def owned(self, name):
         return self.arrays[name][: self.n_owned]

@@ -5,7 +5,9 @@ Per advection step, on every rank:
     1. check       stop on a non-finite value or a particle outside the domain
     2. wrap        periodic positions back into the domain
     3. migrate     owned particles that crossed a cut move to their new rank
-    4. rebalance   new cuts when the imbalance exceeds the threshold
+    4. rebalance   new cuts when the imbalance exceeds the threshold; every
+                   CELL_SORT_EVERY configurations the owned particles are
+                   re-sorted by cell in memory (sums do not depend on it)
     5. halo        ghosts within the kernel support of each cut (periodic images too)
     6. neighbours  cell-linked lists over owned + ghosts, in canonical order
     7. surface     free-surface classes from the position divergence (solids, UTVF)
@@ -25,10 +27,11 @@ import numpy as np
 from mpi4py import MPI
 
 from . import integrators, surface
+from .blowup import NON_FINITE, first_bad_particle
 from .errors import BlowUp
 from .io.frames import frame_path, write_frame
 from .kernels import KERNELS, SUPPORT_FACTOR, normalisation
-from .neighbours import neighbour_lists
+from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
 from .parallel.decomposition import SlabDecomposition, migrate, moving_coordinates
 from .parallel.halo import Halo
@@ -36,6 +39,9 @@ from .particles import MOVING
 from .physics.solid import correction_matrix
 from .stabilisers.transport_velocity import STABILISERS
 from .timing import PhaseTimer
+from .workspace import Workspace
+
+CELL_SORT_EVERY = 25  # configurations between re-sorting the owned particles by cell (memory locality)
 
 
 class Simulation:
@@ -66,6 +72,7 @@ class Simulation:
         self.advection_steps = 0
         self.dt = 0.0
         self.timer = PhaseTimer()
+        self.workspace = Workspace()
         self.start = self.nbr = self.xc = self._B = None
 
     # -- one advection step -------------------------------------------------
@@ -87,6 +94,8 @@ class Simulation:
             if self.decomp.imbalance(n_moving) > self.params["rebalance_threshold"]:
                 self.decomp.balance(moving_coordinates(pa, self.decomp.axis))
                 migrate(pa, self.decomp)
+            if self.advection_steps % CELL_SORT_EVERY == 0:
+                pa.keep_owned(cell_order(pa.x, pa.n_owned, self.support, self.case.domain[0]), 0)
             self.halo.build(pa)
         with self.timer("neighbours"):
             self.xc = pa.x.copy()
@@ -101,7 +110,7 @@ class Simulation:
         """B of 000_ Eq. 24 for the owned particles on this configuration, computed once when first asked."""
         if self._B is None:
             pa = self.particles
-            self._B = np.zeros((pa.n_owned, pa.dim, pa.dim))
+            self._B = self.workspace.get("correction_matrix", pa.n_owned, (pa.dim, pa.dim))
             correction_matrix(pa.n_owned, self.start, self.nbr, self.xc, pa.mass, pa.rho, pa.kind,
                               *self.kernel_args, self._B)
         return self._B
@@ -109,19 +118,13 @@ class Simulation:
     def _check(self):
         """Stop with step, time, rank and particle id on NaN or a lost particle."""
         pa = self.particles
-        n = pa.n_owned
-        moving = pa.kind[:n] == MOVING
         lo, hi = self.case.domain
-        x, v, rho = pa.x[:n], pa.v[:n], pa.rho[:n]
-        finite = np.isfinite(x).all(1) & np.isfinite(v).all(1) & np.isfinite(rho)
-        inside = np.all((x >= lo) | np.array(self.case.periodic), 1) & \
-            np.all((x < hi) | np.array(self.case.periodic), 1)
-        bad = moving & ~(finite & inside)
+        k, problem = first_bad_particle(pa.n_owned, pa.kind, pa.x, pa.v, pa.rho, np.asarray(lo, float),
+                                        np.asarray(hi, float), np.array(self.case.periodic, dtype=np.bool_))
         local = None
-        if bad.any():
-            k = int(np.argmax(bad))
-            what = "a non-finite value" if not finite[k] else "a particle left the domain"
-            local = (int(pa.gid[k]), what, np.round(x[k], 6).tolist())
+        if k >= 0:
+            what = "a non-finite value" if problem == NON_FINITE else "a particle left the domain"
+            local = (int(pa.gid[k]), what, np.round(pa.x[k], 6).tolist())
         reports = self.comm.allgather(local)
         for rank, rep in enumerate(reports):
             if rep is not None:

@@ -9,7 +9,8 @@ from mpisph.kernels import KERNELS, normalisation
 from mpisph.materials import DruckerPrager, ElasticSolid
 from mpisph.neighbours import neighbour_lists
 from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
-from mpisph.physics.solid import correction_matrix, stress_acceleration, velocity_gradient
+from mpisph.physics.solid import (correction_matrix, shear_force_tensor, stress_acceleration,
+                                 velocity_gradient)
 
 DP = 0.01
 H = 1.3 * DP
@@ -75,7 +76,9 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
     velocity_gradient(n, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B, *args, L)
     acc = np.zeros((n, 2))
     # c0 = 0: no Riemann dissipation; p = 0: the pure shear part
-    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), shear, B, True, mass, kind, np.zeros_like(x),
+    T = np.zeros((n, 2, 2))
+    shear_force_tensor(n, kind, shear, np.zeros(n), B, True, T)
+    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, mass, kind, np.zeros_like(x),
                         0.0, -1.0, *args, np.zeros((n, 2)), acc)
     power = np.sum(mass[:, None] * v * acc)
     stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))

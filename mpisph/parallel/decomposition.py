@@ -79,17 +79,23 @@ class SlabDecomposition:
 
 
 def migrate(particles, decomp):
-    """Send every owned particle to the rank owning its position; drops ghosts."""
+    """Send every owned particle that left this rank's slab to its new owner; drops ghosts.
+
+    Particles that stay keep their rows (in order); arrivals are appended in
+    the order of their source ranks.
+    """
     comm = decomp.comm
     n = particles.n_owned
     dest = decomp.owner(particles.x[:n, decomp.axis])
-    order = np.argsort(dest, kind="stable")
-    send_counts = np.bincount(dest, minlength=comm.size)
+    leaving = dest != comm.rank
+    send_counts = np.bincount(dest[leaving], minlength=comm.size)
     recv_counts = exchange_counts(comm, send_counts)
+    leavers = np.nonzero(leaving)[0]
+    order = leavers[np.argsort(dest[leavers], kind="stable")]
     names = [f.name for f in particles.fields]
     rows = alltoallv_rows(comm, particles.pack(names, order), send_counts, recv_counts)
-    particles.reset(len(rows))
-    particles.unpack_into(names, rows, 0)
+    particles.keep_owned(np.nonzero(~leaving)[0], len(rows))
+    particles.unpack_into(names, rows, particles.n_owned - len(rows))
 
 
 def moving_coordinates(particles, axis):

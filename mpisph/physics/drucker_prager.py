@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit
 
 from ..kernels import dw
+from ..neighbours import pair_distance
 from ..particles import Field, is_wall
 from .solid import material_pressure
 
@@ -40,31 +41,41 @@ DIFFUSION_ZETA = 0.1
 @njit(cache=True)
 def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0,
                      h, sigma, kernel, rate):
-    """rate_i = the diffusion term of the module docstring (vertical axis = last axis)."""
+    """rate_i = the diffusion term of the module docstring (vertical axis = last axis).
+
+    With f_ij the pair weight, the sum is sigma_i sum f - sum f sigma_j - (sum f dsigma^geo_ij),
+    the stresses being symmetric.
+    """
     dim = xc.shape[1]
     vert = dim - 1
     coef0 = 2.0 * DIFFUSION_ZETA * h * c0
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        rate[i, :, :] = 0.0
+        f_sum = geo_sum = 0.0
+        s00 = s01 = s02 = s11 = s12 = s22 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             if is_wall(kind[j]):
                 continue
-            r2 = 0.0
-            for a in range(dim):
-                d = xc[i, a] - xc[j, a]
-                r2 += d * d
-            r = math.sqrt(r2)
-            geo = rho0 * g * (xc[i, vert] - xc[j, vert])
-            f = coef0 * mass[j] / rho[j] * r * dw(r, h, sigma, kernel) / (r2 + 0.01 * h * h)
-            for a in range(3):
-                for b in range(3):
-                    d_ab = stress[i, a, b] - stress[j, a, b]
-                    if a == b:
-                        d_ab -= geo if a == vert else k0 * geo
-                    rate[i, a, b] += f * d_ab
+            r = pair_distance(xc, i, j)
+            f = coef0 * mass[j] / rho[j] * r * dw(r, h, sigma, kernel) / (r * r + 0.01 * h * h)
+            f_sum += f
+            geo_sum += f * rho0 * g * (xc[i, vert] - xc[j, vert])
+            s00 += f * stress[j, 0, 0]
+            s01 += f * stress[j, 0, 1]
+            s02 += f * stress[j, 0, 2]
+            s11 += f * stress[j, 1, 1]
+            s12 += f * stress[j, 1, 2]
+            s22 += f * stress[j, 2, 2]
+        rate[i, 0, 0], rate[i, 1, 1], rate[i, 2, 2] = s00, s11, s22
+        rate[i, 0, 1] = rate[i, 1, 0] = s01
+        rate[i, 0, 2] = rate[i, 2, 0] = s02
+        rate[i, 1, 2] = rate[i, 2, 1] = s12
+        for a in range(3):
+            for b in range(3):
+                rate[i, a, b] = f_sum * stress[i, a, b] - rate[i, a, b]
+            rate[i, a, a] -= geo_sum if a == vert else k0 * geo_sum
 
 
 @njit(cache=True)
@@ -170,7 +181,6 @@ class DruckerPragerModel:
         self.material = material
         self.eta = 20.0 * dim  # 000_ Sec. 3.1.3
         self.g = float(np.linalg.norm(gravity))
-        self.diffusion = None
 
     def initial_density(self, pressure):
         return np.full_like(pressure, self.material.rho0)
@@ -182,9 +192,8 @@ class DruckerPragerModel:
     def update_stress(self, s, L, dt):
         pa, m = s.particles, self.material
         n = pa.n_owned
-        if self.diffusion is None or len(self.diffusion) != n:
-            self.diffusion = np.zeros((n, 3, 3))
+        diffusion = s.workspace.get("stress_diffusion", n, (3, 3))
         stress_diffusion(n, s.start, s.nbr, s.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
-                         m.k0, m.c0, *s.kernel_args, self.diffusion)
-        drucker_prager_update(n, pa.kind, L, self.diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
+                         m.k0, m.c0, *s.kernel_args, diffusion)
+        drucker_prager_update(n, pa.kind, L, diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)

@@ -33,9 +33,9 @@ from numba import njit
 
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw, w
-from ..neighbours import pair_distance, unit_offset
-from ..particles import MOVING, WALL, Field, is_wall
-from .walls import velocity_jump, wall_relative_normal
+from ..neighbours import pair_difference, pair_distance, pair_offset
+from ..particles import MOVING, WALL_SLIP, Field, is_wall
+from .walls import wall_relative_normal, wall_relative_velocity
 
 RIEMANN_ETA = 3.0
 
@@ -49,22 +49,13 @@ def equation_of_state(n, kind, rho, p, rho0, c0):
 
 
 @njit(cache=True)
-def _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv):
-    """Distance, partner pressure, mean density and normal velocity jump of pair (i, j).
-
-    Fills ``e`` with e_ij and ``dv`` with v_i - v_j; a wall partner takes the
-    states described above.
-    """
-    dim = xc.shape[1]
-    r = unit_offset(xc, i, j, e)
-    if not is_wall(kind[j]):
-        rho_j, p_j = rho[j], p[j]
-    else:
-        gr = 0.0
-        for a in range(dim):
-            gr -= gravity[a] * e[a] * r
-        rho_j, p_j = rho[i], p[i] + rho[i] * max(0.0, gr)
-    return r, p_j, 0.5 * (rho[i] + rho_j), velocity_jump(i, j, v, kind, normal, e, dim, dv)
+def _wall_state(i, j, xc, rho, p, gravity):
+    """(rho_j, p_j) as particle i sees wall particle j: the density of i and the pressure of i
+    extrapolated hydrostatically, p_i + rho_i max(0, -g.r_ij)."""
+    gr = 0.0
+    for a in range(xc.shape[1]):
+        gr -= gravity[a] * (xc[i, a] - xc[j, a])
+    return rho[i], p[i] + rho[i] * max(0.0, gr)
 
 
 @njit(cache=True)
@@ -72,21 +63,29 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
                           c0, h, sigma, kernel, prior, dv_dt):
     """dv/dt = prior - 2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
     dim = xc.shape[1]
-    e = np.empty(dim)
-    dv = np.empty(dim)
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        for a in range(dim):
-            dv_dt[i, a] = prior[i, a]
+        a0 = a1 = a2 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv)
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            rho_j, p_j = rho[j], p[j]
+            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+                rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
+            u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = min(RIEMANN_ETA * max(-u_jump / c0, 0.0), 1.0)
-            p_star = 0.5 * (p[i] + p_j) - 0.5 * beta * rho_bar * c0 * u_jump
-            f = -2.0 * mass[j] / rho[j] * p_star * dw(r, h, sigma, kernel) / rho[i]
-            for a in range(dim):
-                dv_dt[i, a] += f * e[a]
+            p_star = 0.5 * (p[i] + p_j) - 0.25 * beta * (rho[i] + rho_j) * c0 * u_jump
+            f = -2.0 * mass[j] / rho[j] * p_star * dw(r, h, sigma, kernel) / r
+            a0 += f * d0
+            a1 += f * d1
+            a2 += f * d2
+        dv_dt[i, 0] = prior[i, 0] + a0 / rho[i]
+        dv_dt[i, 1] = prior[i, 1] + a1 / rho[i]
+        if dim == 3:
+            dv_dt[i, 2] = prior[i, 2] + a2 / rho[i]
 
 
 @njit(cache=True)
@@ -97,17 +96,21 @@ def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
     ``riemann`` = 1: 000_ Eq. 16 (fluids, granular materials); 0: Eq. 21
     (elastic solids, no Riemann dissipation). Moving and clamped particles.
     """
-    dim = xc.shape[1]
-    e = np.empty(dim)
-    dv = np.empty(dim)
     for i in range(n):
         if is_wall(kind[i]):
             continue
         acc = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r, p_j, rho_bar, u_jump = _riemann_pair(i, j, xc, v, rho, p, kind, normal, gravity, e, dv)
-            acc += mass[j] / rho[j] * (u_jump + riemann * (p[i] - p_j) / (rho_bar * c0)) * dw(r, h, sigma, kernel)
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            rho_j, p_j = rho[j], p[j]
+            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+                rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
+            u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
+            dissipation = riemann * (p[i] - p_j) / (0.5 * (rho[i] + rho_j) * c0)
+            acc += mass[j] / rho[j] * (u_jump + dissipation) * dw(r, h, sigma, kernel)
         drho_dt[i] = rho[i] * acc
 
 
@@ -127,13 +130,13 @@ def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
             j = nbr[s]
             r = pair_distance(xc, i, j)
             f = 2.0 * viscosity * mass[j] / rho[j] / rho[i] * dw(r, h, sigma, kernel) / (r + 0.01 * h)
-            if kind[j] == MOVING or kind[j] == WALL:
-                for a in range(dim):
-                    prior[i, a] += f * (v[i, a] - v[j, a])
-            else:
-                vn = wall_relative_normal(i, j, v, normal, dim)
+            if kind[j] == WALL_SLIP:
+                vn = wall_relative_normal(i, j, v, normal)
                 for a in range(dim):
                     prior[i, a] += f * vn * normal[j, a]
+            else:
+                for a in range(dim):
+                    prior[i, a] += f * (v[i, a] - v[j, a])
 
 
 @njit(cache=True)

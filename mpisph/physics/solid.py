@@ -51,10 +51,10 @@ from numba import njit
 
 from ..integrators import density_half, drift_half, kick
 from ..kernels import dw
-from ..neighbours import unit_offset
+from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
 from .fluid import continuity, prior_acceleration
-from .walls import relative_velocity, velocity_jump
+from .walls import wall_relative_velocity
 
 DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
 
@@ -86,90 +86,137 @@ def _regularised_inverse(A, out):
 
 @njit(cache=True)
 def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
-    """B_i of 000_ Eq. 24 (regularised) for the material particles in [0, n)."""
+    """B_i of 000_ Eq. 24 (regularised) for the material particles in [0, n); zero for walls."""
     dim = xc.shape[1]
-    e = np.empty(dim)
     A = np.empty((dim, dim))
     for i in range(n):
         if is_wall(kind[i]):
+            B[i, :, :] = 0.0
             continue
-        A[:, :] = 0.0
+        a00 = a01 = a02 = a11 = a12 = a22 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = unit_offset(xc, i, j, e)
-            f = -mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
-            for a in range(dim):
-                for b in range(dim):
-                    A[a, b] += f * e[a] * e[b]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r  # -V_j r_ij (x) grad W = f d (x) d
+            a00 += f * d0 * d0
+            a01 += f * d0 * d1
+            a02 += f * d0 * d2
+            a11 += f * d1 * d1
+            a12 += f * d1 * d2
+            a22 += f * d2 * d2
+        A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a01, a11
+        if dim == 3:
+            A[0, 2], A[2, 0], A[1, 2], A[2, 1], A[2, 2] = a02, a02, a12, a12, a22
         _regularised_inverse(A, B[i])
 
 
 @njit(cache=True)
 def velocity_gradient(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L):
-    """L_i of 000_ Eq. 23 as a 3 x 3 tensor (zero third row and column in 2D)."""
+    """L_i of 000_ Eq. 23 as a 3 x 3 tensor (zero third row and column in 2D).
+
+    B_i is the same for every pair of i, so the sum runs uncorrected,
+    M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij, and L_i = M_i B_i^T.
+    """
     dim = xc.shape[1]
-    e = np.empty(dim)
-    dv = np.empty(dim)
-    g = np.empty(dim)
+    M = np.empty((3, 3))
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        L[i, :, :] = 0.0
+        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = unit_offset(xc, i, j, e)
-            f = mass[j] / rho[j] * dw(r, h, sigma, kernel)
-            relative_velocity(i, j, v, kind, normal, dim, dv)
-            for a in range(dim):
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+            f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+            m00 += f * u0 * d0
+            m01 += f * u0 * d1
+            m02 += f * u0 * d2
+            m10 += f * u1 * d0
+            m11 += f * u1 * d1
+            m12 += f * u1 * d2
+            m20 += f * u2 * d0
+            m21 += f * u2 * d1
+            m22 += f * u2 * d2
+        M[0, 0], M[0, 1], M[0, 2] = m00, m01, m02
+        M[1, 0], M[1, 1], M[1, 2] = m10, m11, m12
+        M[2, 0], M[2, 1], M[2, 2] = m20, m21, m22
+        L[i, :, :] = 0.0
+        for a in range(dim):
+            for b in range(dim):
                 acc = 0.0
-                for b in range(dim):
-                    acc += B[i, a, b] * e[b]
-                g[a] = f * acc
-            for a in range(dim):
-                for b in range(dim):
-                    L[i, a, b] -= dv[a] * g[b]
+                for c in range(dim):
+                    acc += M[a, c] * B[i, b, c]
+                L[i, a, b] = acc
 
 
 @njit(cache=True)
-def stress_acceleration(n, start, nbr, xc, v, rho, p, stress, B, corrected, mass, kind, normal,
+def shear_force_tensor(n, kind, stress, p, B, corrected, T):
+    """T_i = s_i B_i (``corrected``) or s_i, the in-plane block, with s = sigma + p I, for the
+    material particles in [0, n), ghosts included: the shear part of the momentum sum is
+    sum_j V_j (T_i + T_j) e_ij W'_ij."""
+    dim = T.shape[1]
+    for i in range(n):
+        if is_wall(kind[i]):
+            continue
+        for a in range(dim):
+            for b in range(dim):
+                if corrected:
+                    acc = p[i] * B[i, a, b]
+                    for c in range(dim):
+                        acc += stress[i, a, c] * B[i, c, b]
+                else:
+                    acc = stress[i, a, b] + (p[i] if a == b else 0.0)
+                T[i, a, b] = acc
+
+
+@njit(inline="always")
+def _tensor_times(T, k, d0, d1, d2):
+    """T_k (d0, d1, d2) as three scalars, for an in-plane block T of 2 x 2 or 3 x 3."""
+    if T.shape[1] == 2:
+        return T[k, 0, 0] * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + T[k, 1, 1] * d1, 0.0
+    return (T[k, 0, 0] * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
+            T[k, 1, 0] * d0 + T[k, 1, 1] * d1 + T[k, 1, 2] * d2,
+            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + T[k, 2, 2] * d2)
+
+
+@njit(cache=True)
+def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
                         c0, eta, h, sigma, kernel, prior, dv_dt):
-    """dv/dt of the moving particles (module docstring); eta <= 0 means beta = 1; ``corrected``:
-    the shear part carries B, else B = I (Eq. 22 as printed)."""
+    """dv/dt of the moving particles (module docstring), with T from ``shear_force_tensor``;
+    eta <= 0 means beta = 1. T_i is the same for every pair of i and multiplies
+    sum_j V_j e_ij W'_ij once; a wall partner takes the state of i."""
     dim = xc.shape[1]
-    e = np.empty(dim)
-    dv = np.empty(dim)
-    be_i = np.empty(dim)
-    be_k = np.empty(dim)
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        for a in range(dim):
-            dv_dt[i, a] = prior[i, a]
+        a0 = a1 = a2 = 0.0
+        g0 = g1 = g2 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = unit_offset(xc, i, j, e)
-            wall = is_wall(kind[j])
-            k = i if wall else j
-            u_jump = velocity_jump(i, j, v, kind, normal, e, dim, dv)
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            k = j
+            if is_wall(kind[j]):  # the wall takes the state of i; walls.py: off the common path
+                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+                k = i
+            u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = 1.0 if eta <= 0.0 else min(eta * max(-u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[k] - beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
-            for a in range(dim):
-                if not corrected:
-                    be_i[a] = be_k[a] = e[a]
-                    continue
-                be_i[a] = 0.0
-                be_k[a] = 0.0
-                for b in range(dim):
-                    be_i[a] += B[i, a, b] * e[b]
-                    be_k[a] += B[k, a, b] * e[b]
-            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / rho[i]
-            for a in range(dim):
-                acc = -pressure * e[a]
-                for b in range(dim):
-                    acc += (stress[i, a, b] * be_i[b] + stress[k, a, b] * be_k[b])
-                    if a == b:
-                        acc += p[i] * be_i[b] + p[k] * be_k[b]
-                dv_dt[i, a] += f * acc
+            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+            t0, t1, t2 = _tensor_times(T, k, d0, d1, d2)
+            a0 += f * (t0 - pressure * d0)
+            a1 += f * (t1 - pressure * d1)
+            a2 += f * (t2 - pressure * d2)
+            g0 += f * d0
+            g1 += f * d1
+            g2 += f * d2
+        t0, t1, t2 = _tensor_times(T, i, g0, g1, g2)
+        dv_dt[i, 0] = prior[i, 0] + (a0 + t0) / rho[i]
+        dv_dt[i, 1] = prior[i, 1] + (a1 + t1) / rho[i]
+        if dim == 3:
+            dv_dt[i, 2] = prior[i, 2] + (a2 + t2) / rho[i]
 
 
 @njit(cache=True)
@@ -208,7 +255,6 @@ class SolidScheme:
         self.gravity = gravity
         self.u_ref = u_ref
         self.fields = self.base_fields + model.fields
-        self.L = None
 
     def initial_density(self, pressure):
         return self.model.initial_density(pressure)
@@ -225,7 +271,6 @@ class SolidScheme:
         pa.B[:n] = s.correction_matrices()
         if self.model.corrected_shear_force:
             s.halo.refresh(pa, ["B"])
-        self.L = np.zeros((n, 3, 3))
         prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
                            self.gravity, 0.0, *k, pa.prior)
 
@@ -238,18 +283,19 @@ class SolidScheme:
         self.model.pressure(s)
         s.halo.refresh(pa, ["rho", "p", "stress"])
         # 3. momentum and kick (000_ Eq. 40), then the new velocities of ghosts
-        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.stress, pa.B,
-                            self.model.corrected_shear_force, pa.mass, pa.kind, pa.normal, self.m.c0,
-                            self.model.eta, *k, pa.prior, pa.dv_dt)
+        T = s.workspace.get("shear_force", pa.n, (pa.dim, pa.dim))
+        shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, self.model.corrected_shear_force, T)
+        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind, pa.normal,
+                            self.m.c0, self.model.eta, *k, pa.prior, pa.dv_dt)
         kick(n, pa.kind, pa.v, pa.dv_dt, dt)
         s.halo.refresh(pa, ["v"])
         # 4. second half: positions (000_ Eq. 41), velocity gradient, density, stress
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
-        velocity_gradient(n, s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal,
-                          pa.B, *k, self.L)
+        L = s.workspace.get("velocity_gradient", n, (3, 3))
+        velocity_gradient(n, s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, *k, L)
         continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
                    self.gravity, self.m.c0, self.model.riemann_continuity, *k, pa.drho_dt)
-        self.model.update_stress(s, self.L, dt)  # reads rho of neighbours: before density_half
+        self.model.update_stress(s, L, dt)  # reads rho of neighbours: before density_half
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
 
     @property

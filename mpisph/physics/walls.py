@@ -6,42 +6,39 @@ whole relative velocity mirrored for a no-slip wall (v_j = 2 v_w - v_i),
 only its normal part for a free-slip wall. Densities, pressures and stresses
 of the partner are chosen by each material (fluid: hydrostatic pressure
 extrapolation; solids: the wall takes the stress of particle i).
+
+Pair loops compute the plain difference v_i - v_j and call
+``wall_relative_velocity`` only when j is a wall particle. That keeps the
+common path straight-line code: an inlined helper with a branch inside, or
+any function call with array arguments on every pair, makes the loops two to
+three times slower (benchmarks/ceiling.py measures the bound).
 """
 
 from numba import njit
 
-from ..particles import WALL, is_wall
+from ..particles import WALL
 
 
-@njit(cache=True)
-def wall_relative_normal(i, j, v, normal, dim):
+@njit(inline="always")
+def wall_relative_normal(i, j, v, normal):
     """(v_i - v_w) . n_w for wall particle j."""
     s = 0.0
-    for a in range(dim):
+    for a in range(v.shape[1]):
         s += (v[i, a] - v[j, a]) * normal[j, a]
     return s
 
 
 @njit(cache=True)
-def relative_velocity(i, j, v, kind, normal, dim, out):
-    """out = v_i - v_j, with the mirrored wall velocity when j is a wall particle."""
-    if not is_wall(kind[j]):
-        for a in range(dim):
-            out[a] = v[i, a] - v[j, a]
-    elif kind[j] == WALL:
-        for a in range(dim):
-            out[a] = 2.0 * (v[i, a] - v[j, a])
+def wall_relative_velocity(i, j, v, kind, normal):
+    """v_i - v_j as i sees wall particle j, three scalars (the third is 0 in 2D):
+    2 (v_i - v_w) for a no-slip wall, 2 ((v_i - v_w) . n_w) n_w for a free-slip wall."""
+    if kind[j] == WALL:
+        u0 = 2.0 * (v[i, 0] - v[j, 0])
+        u1 = 2.0 * (v[i, 1] - v[j, 1])
+        u2 = 2.0 * (v[i, 2] - v[j, 2]) if v.shape[1] == 3 else 0.0
     else:
-        vn = wall_relative_normal(i, j, v, normal, dim)
-        for a in range(dim):
-            out[a] = 2.0 * vn * normal[j, a]
-
-
-@njit(cache=True)
-def velocity_jump(i, j, v, kind, normal, e, dim, dv):
-    """u_jump = (v_i - v_j) . e_ij, the wall's mirrored velocity when j is a wall; ``dv`` gets v_i - v_j."""
-    relative_velocity(i, j, v, kind, normal, dim, dv)
-    s = 0.0
-    for a in range(dim):
-        s += dv[a] * e[a]
-    return s
+        vn = 2.0 * wall_relative_normal(i, j, v, normal)
+        u0 = vn * normal[j, 0]
+        u1 = vn * normal[j, 1]
+        u2 = vn * normal[j, 2] if v.shape[1] == 3 else 0.0
+    return u0, u1, u2
