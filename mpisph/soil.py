@@ -1,9 +1,10 @@
-"""A Drucker-Prager soil block resting on a floor against a back wall, at rest under gravity.
+"""A Drucker-Prager soil block resting on a floor, at rest under gravity.
 
-Shared by the granular cases (column collapse, cohesive cut): the material
-parameters every such case exposes, and the Case of a block [0, L] x [0, H]
-with geostatic initial stress, inside a tank of no-slip dummy walls whose
-floor is ``floor`` long.
+Shared by the granular cases (column collapse, cohesive cut, cube failure):
+the material parameters every such case exposes, and the Case of a block with
+geostatic initial stress inside a tank of no-slip dummy walls: in 2D the
+block [0, L] x [0, H] against the back wall of a floor ``floor`` long, in 3D
+a cube standing in the middle of a square floor with a low rim.
 """
 
 import numpy as np
@@ -28,20 +29,40 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
 
 
 def block_on_floor(p, L, H, floor, name):
-    """The Case of the soil block ``name`` (L x H) on a floor ``floor`` long, parameters ``p``."""
+    """The 2D Case of the soil block ``name`` (L x H) on a floor ``floor`` long, parameters ``p``."""
+    return _soil_in_tank(p, (0.0, 0.0), (L, H), (0.0, 0.0), (floor, 2.0 * H), name)
+
+
+def cube_on_floor(p, edge, floor, name):
+    """The 3D Case of the soil cube ``name`` (edge ``edge``) centred on a square floor of side
+    ``floor``, fenced by a rim a quarter of the cube high, parameters ``p``."""
+    half, rim = 0.5 * edge, 0.25 * edge
+    return _soil_in_tank(p, (-half, -half, 0.0), (half, half, edge), (-0.5 * floor, -0.5 * floor, 0.0),
+                         (0.5 * floor, 0.5 * floor, rim), name)
+
+
+def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
+    """Soil filling the box [lo, hi] inside an open-topped tank [tank_lo, tank_hi] of no-slip
+    dummy walls; the domain reaches one block height above the block's top."""
+    dim = len(lo)
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
-    block = box((0.0, 0.0), (L, H), p.dp, f"the {name}")
+    block = box(lo, hi, p.dp, f"the {name}")
+    height = hi[-1] - lo[-1]
     layers = int(np.ceil(2 * p.h_factor))
-    wall_x, wall_n = box_walls((0.0, 0.0), (floor, 2.0 * H), p.dp, layers, open_sides=("+y",))
+    up = "+" + "xyz"[dim - 1]
+    wall_x, wall_n = box_walls(tank_lo, tank_hi, p.dp, layers, open_sides=(up,))
     margin = layers * p.dp
+    domain_lo = tuple(a - margin for a in tank_lo)
+    domain_hi = tuple(a + margin for a in tank_hi[:-1]) + (max(tank_hi[-1], hi[-1] + height),)
+    gravity = (0.0,) * (dim - 1) + (-p.g,)
     return Case(
-        dim=2,
-        domain=((-margin, -margin), (floor + margin, 2.0 * H)),
+        dim=dim,
+        domain=(domain_lo, domain_hi),
         dp=p.dp,
         material=soil,
-        bodies=[Body(name, block, stress=geostatic_stress(block, H, soil, p.g))],
-        walls=[Wall("floor and back wall", wall_x, wall_n)],
-        gravity=(0.0, -p.g),
+        bodies=[Body(name, block, stress=geostatic_stress(block, hi[-1], soil, p.g))],
+        walls=[Wall("tank", wall_x, wall_n)],
+        gravity=gravity,
         stabiliser=p.stabiliser,
-        u_ref=float(np.sqrt(2.0 * p.g * H)),
+        u_ref=float(np.sqrt(2.0 * p.g * height)),
     )
