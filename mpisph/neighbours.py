@@ -7,8 +7,9 @@ i (and every sum over it) is the same whatever the decomposition: that is
 what makes runs on 1, 2 and 3 ranks agree bit for bit.
 
 Lists are in CSR form: the neighbours of particle i are
-``index[start[i]:start[i + 1]]``; owned material particles (moving or
-clamped) get lists, wall particles none.
+``index[start[i]:start[i + 1]]`` (int32: a rank holds fewer than 2**31
+particles, and the lists are the largest array of a 3D run); owned material
+particles (moving or clamped) get lists, wall particles none.
 """
 
 import numpy as np
@@ -108,7 +109,7 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
     dz_lo = -1 if dim == 3 else 0
     dz_hi = 1 if dim == 3 else 0
     start = np.zeros(n_owned + 1, np.int64)
-    index = np.empty(max(16, 24 * n_owned if dim == 2 else 80 * n_owned), np.int64)
+    index = np.empty(max(16, 24 * n_owned if dim == 2 else 80 * n_owned), np.int32)  # 4 bytes per pair
     count = 0
     for i in range(n_owned):
         start[i] = count

@@ -107,12 +107,13 @@ class Simulation:
                 surface.classify(self)
 
     def correction_matrices(self):
-        """B of 000_ Eq. 24 for the owned particles on this configuration, computed once when first asked."""
+        """B of 000_ Eq. 24 for the owned particles on this configuration, computed once when first
+        asked, into the field ``B`` when the particles have one."""
         if self._B is None:
             pa = self.particles
-            self._B = self.workspace.get("correction_matrix", pa.n_owned, (pa.dim, pa.dim))
-            correction_matrix(pa.n_owned, self.start, self.nbr, self.xc, pa.mass, pa.rho, pa.kind,
-                              *self.kernel_args, self._B)
+            n = pa.n_owned
+            self._B = pa.B[:n] if "B" in pa.arrays else self.workspace.get("correction_matrix", n, (pa.dim, pa.dim))
+            correction_matrix(n, self.start, self.nbr, self.xc, pa.mass, pa.rho, pa.kind, *self.kernel_args, self._B)
         return self._B
 
     def _check(self):

@@ -268,7 +268,7 @@ class SolidScheme:
         the momentum sum reads them), gravity."""
         pa, k = s.particles, s.kernel_args
         n = pa.n_owned
-        pa.B[:n] = s.correction_matrices()
+        s.correction_matrices()  # into pa.B
         if self.model.corrected_shear_force:
             s.halo.refresh(pa, ["B"])
         prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
