@@ -2,17 +2,31 @@
 
 import re
 import tempfile
+from dataclasses import dataclass
 
 from mpisph.launch import mpirun_mpisph
 
 
+@dataclass
+class Run:
+    """What the closing lines of a run say."""
+
+    rate: float  # particle-steps per second per core
+    shares: dict  # phase -> percent of the wall time
+    particles: int
+    steps: int
+    configurations: int  # neighbour configurations (advection steps)
+    command: str
+
+
 def run_case(case, ranks, args):
-    """Run a case; returns (throughput per core, phase shares {name: percent}, command line)."""
+    """Run a case on ``ranks`` ranks with extra command-line ``args``; returns a ``Run``."""
     with tempfile.TemporaryDirectory() as out:
-        r = mpirun_mpisph([case, *args, "--out", out], ranks=ranks)
+        r = mpirun_mpisph([case, *map(str, args), "--out", out], ranks=ranks)
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(map(str, args))}"
     if r.returncode != 0:
         raise SystemExit(f"benchmark run failed: {shown}\n{r.stderr}")
-    rate = float(re.search(r"throughput: (\S+) particle-steps/s/core", r.stdout).group(1))
+    m = re.search(r"throughput: (\S+) particle-steps/s/core on \d+ rank\(s\), (\d+) particles, (\d+) steps, "
+                  r"(\d+) neighbour configurations", r.stdout)
     shares = {k: float(v) for k, v in re.findall(r"(\w+) ([\d.]+)%", r.stdout.split("timing:")[1])}
-    return rate, shares, shown
+    return Run(float(m.group(1)), shares, int(m.group(2)), int(m.group(3)), int(m.group(4)), shown)

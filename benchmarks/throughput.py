@@ -1,22 +1,40 @@
-"""Particle-steps per second per core at >= 100k particles, 1 and 2 ranks, and the 2-rank efficiency.
+"""Particle-steps per second per core at >= 100k particles, 1 and 2 ranks, the 2-rank efficiency,
+and each figure as a fraction of this machine's ceiling.
 
-    .venv/bin/python benchmarks/throughput.py [--cases dam_break_2d column_collapse_2d]
+    .venv/bin/python benchmarks/throughput.py [--cases dam_break_2d column_collapse_2d cube_failure_3d]
 
-Cases: the 2D dam break (fluid, dual time stepping) and the 2D column
-collapse (Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4).
-Each run is timed by the solver itself (wall time of the step loop, numba
-compilation excluded by a warm-up run); the 2-rank parallel efficiency is the
-2-rank rate per core over the 1-rank rate.
+Cases: the 2D dam break (fluid, dual time stepping), the 2D column collapse
+and the 3D cube failure (Drucker-Prager with UTVF, single time stepping as in
+000_ Sec. 3.4). Each run is timed by the solver itself (wall time of the step
+loop, numba compilation excluded by a warm-up run); the 2-rank parallel
+efficiency is the 2-rank rate per core over the 1-rank rate.
+
+Ceiling: a step that makes P passes over the neighbours of every particle
+cannot beat ceiling / P particle-steps per second, with the ceiling of
+benchmarks/ceiling.py (one density summation over a cell-linked list). P
+counts the pair loops of the scheme, per step plus per neighbour
+configuration times configurations per step:
+
+- fluid: per acoustic step pressure acceleration and continuity (2); per
+  configuration the neighbour search and the density reinitialisation (2;
+  the dam break has no viscosity, so no viscous pass);
+- Drucker-Prager with UTVF: per step stress acceleration, velocity gradient,
+  continuity and stress diffusion (4); per configuration the neighbour
+  search, position divergence, surface classes, correction matrix and the
+  UTVF shift (5).
 """
 
 import argparse
 
 from _run import run_case
+from ceiling import ceiling
 
-# case: (spacing giving >= 100k moving particles, simulated time per run, a small warm-up run)
+# case: (spacing giving >= 100k moving particles, simulated time per run, warm-up arguments,
+#        dimension, pair passes per step, pair passes per neighbour configuration)
 BENCHMARKS = {
-    "dam_break_2d": ("dp=0.0044", 0.02, ["--set", "dp=0.05", "--t-end", "0.01"]),  # 103k particles
-    "column_collapse_2d": ("dp=0.00044", 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"]),  # 103k particles
+    "dam_break_2d": ("dp=0.0044", 0.02, ["--set", "dp=0.05", "--t-end", "0.01"], 2, 2, 2),  # 103k
+    "column_collapse_2d": ("dp=0.00044", 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"], 2, 4, 5),  # 103k
+    "cube_failure_3d": ("dp=0.04", 0.01, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 4, 5),  # 125k
 }
 
 
@@ -24,17 +42,25 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="*", choices=list(BENCHMARKS), default=list(BENCHMARKS))
     a = ap.parse_args()
+    ceilings = {}
     for case in a.cases:
-        spacing, t_end, warm_up = BENCHMARKS[case]
+        spacing, t_end, warm_up, dim, per_step, per_configuration = BENCHMARKS[case]
+        if dim not in ceilings:
+            ceilings[dim] = ceiling(dim=dim)[0]
+            print(f"ceiling {dim}D: {ceilings[dim]:.4g} particle-passes/s on one core  "
+                  f"[.venv/bin/python benchmarks/ceiling.py --dim {dim}]", flush=True)
         run_case(case, 1, warm_up)  # compile the numba kernels once
         args = ["--set", spacing, "--t-end", t_end, "--output-interval", t_end]
         rates = {}
         for ranks in (1, 2):
-            rate, shares, cmd = run_case(case, ranks, args)
-            rates[ranks] = rate
-            phases = ", ".join(f"{k} {v:.0f}%" for k, v in shares.items())
-            print(f"{case} {spacing} ranks={ranks}: {rate:.4g} particle-steps/s/core  ({phases})  [{cmd}]",
-                  flush=True)
+            r = run_case(case, ranks, args)
+            rates[ranks] = r.rate
+            passes = per_step + per_configuration * r.configurations / r.steps
+            bound = ceilings[dim] / passes
+            phases = ", ".join(f"{k} {v:.0f}%" for k, v in r.shares.items())
+            print(f"{case} {spacing} ranks={ranks}: {r.rate:.4g} particle-steps/s/core, {r.particles} particles; "
+                  f"{passes:.2f} pair passes/step, {100 * r.rate / bound:.0f}% of the ceiling's "
+                  f"{bound:.3g}  ({phases})  [{r.command}]", flush=True)
         print(f"{case} 2-rank parallel efficiency: {100 * rates[2] / rates[1]:.1f}%", flush=True)
 
 

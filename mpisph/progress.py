@@ -49,7 +49,7 @@ class Progress:
         self._say(f"mpisph: done at t = {sim.t:g} s after {sim.step} steps")
         self._say(f"timing: wall {wall:.2f} s  {shares}")
         self._say(f"throughput: {rate:.4g} particle-steps/s/core on {self.comm.size} rank(s), "
-                  f"{self.n_total} particles, {steps} steps")
+                  f"{self.n_total} particles, {steps} steps, {sim.advection_steps} neighbour configurations")
 
     def _say(self, line):
         if self.comm.rank == 0 and not self.quiet:
