@@ -17,6 +17,10 @@ from numba import njit
 
 from .particles import is_wall
 
+# Search cells are radius / CELLS_PER_RADIUS wide: with 2, the 5 x 5 (x 5) block of cells around a
+# particle covers 30 % (2D) to 42 % (3D) fewer candidates than 3 x 3 (x 3) cells of width radius.
+CELLS_PER_RADIUS = 2
+
 
 def neighbour_lists(x, gid, kind, n_owned, radius, origin):
     """Neighbours within ``radius`` (strictly) of each owned material particle."""
@@ -75,7 +79,7 @@ def _cells(x, radius, origin):
 @njit(cache=True)
 def _build(x, kind, n_owned, radius, origin, by_gid):
     n, dim = x.shape
-    c = _cells(x, radius, origin)
+    c = _cells(x, radius / CELLS_PER_RADIUS, origin)
     lo = np.zeros(3, np.int64)
     ext = np.ones(3, np.int64)
     if n > 0:
@@ -106,8 +110,9 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
         fill[cell_id[i]] += 1
 
     r2max = radius * radius
-    dz_lo = -1 if dim == 3 else 0
-    dz_hi = 1 if dim == 3 else 0
+    reach = CELLS_PER_RADIUS
+    dz_lo = -reach if dim == 3 else 0
+    dz_hi = reach if dim == 3 else 0
     start = np.zeros(n_owned + 1, np.int64)
     index = np.empty(max(16, 24 * n_owned if dim == 2 else 80 * n_owned), np.int32)  # 4 bytes per pair
     count = 0
@@ -119,18 +124,18 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
         xi1 = x[i, 1]
         xi2 = x[i, 2] if dim == 3 else 0.0
         cx = c[i, 0] - lo[0]
-        x_lo = max(cx - 1, 0)
-        x_hi = min(cx + 1, ext[0] - 1)
+        x_lo = max(cx - reach, 0)
+        x_hi = min(cx + reach, ext[0] - 1)
         for dz in range(dz_lo, dz_hi + 1):
             cz = c[i, 2] - lo[2] + dz
             if cz < 0 or cz >= ext[2]:
                 continue
-            for dy in range(-1, 2):
+            for dy in range(-reach, reach + 1):
                 cy = c[i, 1] - lo[1] + dy
                 if cy < 0 or cy >= ext[1]:
                     continue
                 row = ext[0] * (cy + ext[1] * cz)
-                # the cells (cx - 1 .. cx + 1, cy, cz) are consecutive: one range of candidates
+                # the cells (cx - reach .. cx + reach, cy, cz) are consecutive: one range of candidates
                 s0 = cell_start[row + x_lo]
                 s1 = cell_start[row + x_hi + 1]
                 if count + s1 - s0 > len(index):

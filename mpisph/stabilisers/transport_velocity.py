@@ -39,6 +39,7 @@ from numba import njit
 
 from .. import surface
 from ..kernels import dw
+from ..neighbours import pair_offset
 from ..particles import MOVING
 
 LIMITER_C = 1000.0
@@ -83,8 +84,6 @@ def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
 def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unified, h, sigma, kernel):
     """Add dr of 000_ Eq. 30 (``unified`` false: inner particles only) or Eq. 37 to ``x``."""
     dim = xc.shape[1]
-    g = np.empty(dim)
-    bg = np.empty(dim)
     scale = -2.0 * ALPHA * h * h
     for i in range(n):
         if kind[i] != MOVING:
@@ -92,33 +91,33 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
         if cls[i] != surface.INNER and (not unified or cls[i] == surface.SPLASHED
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
-        g[:] = 0.0
+        g0 = g1 = g2 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            r = 0.0
-            for a in range(dim):
-                r += (xc[i, a] - xc[j, a]) ** 2
-            r = r ** 0.5
+            d0, d1, d2, r = pair_offset(xc, i, j)
             f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            for a in range(dim):
-                g[a] += f * (xc[i, a] - xc[j, a])
-        if cls[i] != surface.INNER:
-            norm = 0.0
-            for a in range(dim):
-                bg[a] = 0.0
-                for b in range(dim):
-                    bg[a] += B[i, a, b] * g[b]
-                norm += bg[a] * bg[a]
-            if norm == 0.0:
+            g0 += f * d0
+            g1 += f * d1
+            g2 += f * d2
+        if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35)
+            n0 = B[i, 0, 0] * g0 + B[i, 0, 1] * g1
+            n1 = B[i, 1, 0] * g0 + B[i, 1, 1] * g1
+            n2 = 0.0
+            if dim == 3:
+                n0 += B[i, 0, 2] * g2
+                n1 += B[i, 1, 2] * g2
+                n2 = B[i, 2, 0] * g0 + B[i, 2, 1] * g1 + B[i, 2, 2] * g2
+            norm2 = n0 * n0 + n1 * n1 + n2 * n2
+            if norm2 == 0.0:
                 continue
-            gn = 0.0
-            for a in range(dim):
-                bg[a] /= norm ** 0.5
-                gn += g[a] * bg[a]
-            for a in range(dim):
-                g[a] -= gn * bg[a]
-        for a in range(dim):
-            x[i, a] += scale * g[a]
+            gn = (g0 * n0 + g1 * n1 + g2 * n2) / norm2
+            g0 -= gn * n0
+            g1 -= gn * n1
+            g2 -= gn * n2
+        x[i, 0] += scale * g0
+        x[i, 1] += scale * g1
+        if dim == 3:
+            x[i, 2] += scale * g2
 
 
 class NoStabiliser:
