@@ -4,8 +4,11 @@
 lies within ``width`` of it, and makes periodic images: a particle within
 ``width`` of a periodic boundary is also sent, shifted by the period, to the
 ranks near its image (its own rank included, which is how periodicity works
-on a single rank too). The send plan is kept so that ``refresh`` can update
-chosen fields of the same ghosts later in the step without rebuilding.
+on a single rank too). It sends the core fields of particles.CORE_FIELDS,
+which the neighbour search and the configuration's loops read; every other
+field a loop reads from neighbours is sent by ``refresh``, with the send plan
+kept from ``build``, right before that loop. Until then those ghost rows hold
+NaN, so that a missing refresh shows as a blow-up instead of stale values.
 """
 
 import itertools
@@ -13,6 +16,7 @@ import time
 
 import numpy as np
 
+from ..particles import CORE_FIELDS
 from .exchange import alltoallv_rows, exchange_counts
 
 
@@ -76,12 +80,15 @@ class Halo:
         recv_counts = exchange_counts(comm, send_counts)
         self._plan = (index, send_counts, recv_counts)
 
-        names = [f.name for f in particles.fields]
+        names = [f.name for f in CORE_FIELDS]
         rows = particles.pack(names, index)
         rows[:, _column(particles, names, "x")] += shift
         ghosts = alltoallv_rows(comm, rows, send_counts, recv_counts)
         particles.set_ghost_count(len(ghosts))
         particles.unpack_into(names, ghosts, particles.n_owned)
+        for f in particles.fields:
+            if f.name not in names and np.issubdtype(f.dtype, np.floating):
+                particles.arrays[f.name][particles.n_owned:] = np.nan
 
     def refresh(self, particles, names):
         """Send the current values of ``names`` to the ghosts made by ``build``."""
