@@ -14,6 +14,7 @@ CASES = {
     "taylor_green": (["--set", "nx=30", "--t-end", "0.5", "--output-interval", "0.25"], 1.0),
     "column_collapse_2d": (["--set", "dp=0.01", "--t-end", "0.04", "--output-interval", "0.02"], 0.6),
     "oscillating_beam": (["--set", "H_over_dp=5", "--t-end", "0.012", "--output-interval", "0.006"], 0.6),
+    "dam_break_3d": (["--set", "dp=0.1", "--t-end", "0.25", "--output-interval", "0.125"], 4.3),
     "cube_failure_3d": (["--set", "dp=0.2", "--t-end", "0.8", "--output-interval", "0.4"], 5.6),
 }
 FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "plastic_strain")
