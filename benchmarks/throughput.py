@@ -5,9 +5,10 @@ and each figure as a fraction of this machine's ceiling.
 
 Cases: the 2D and 3D dam breaks (fluid, dual time stepping; 140k particles
 in 3D, as PySPH's 143k), the 2D column collapse and the 3D cube failure
-(Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4). Each run is timed by the solver itself (wall time of the step
-loop, numba compilation excluded by a warm-up run); the 2-rank parallel
-efficiency is the 2-rank rate per core over the 1-rank rate.
+(Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4). Each
+run is timed by the solver itself (wall time of the step loop, numba
+compilation excluded by a warm-up run); the 2-rank parallel efficiency is the
+2-rank rate per core over the 1-rank rate.
 
 Ceiling: a step that makes P passes over the neighbours of every particle
 cannot beat ceiling / P particle-steps per second, with the ceiling of
