@@ -126,8 +126,9 @@ class Simulation:
         if k >= 0:
             what = "a non-finite value" if problem == NON_FINITE else "a particle left the domain"
             local = (int(pa.gid[k]), what, np.round(pa.x[k], 6).tolist())
-        reports = self.comm.allgather(local)
-        for rank, rep in enumerate(reports):
+        if not self.comm.allreduce(local is not None, op=MPI.LOR):
+            return
+        for rank, rep in enumerate(self.comm.allgather(local)):
             if rep is not None:
                 gid, what, pos = rep
                 self.frame_index += 1  # after the last regular frame, not over it

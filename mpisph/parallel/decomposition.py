@@ -69,7 +69,8 @@ class SlabDecomposition:
 
     def imbalance(self, n_moving_local):
         """max/mean - 1 of the moving-particle counts over ranks."""
-        counts = np.array(self.comm.allgather(int(n_moving_local)), dtype=float)
+        counts = np.empty(self.comm.size, dtype=np.int64)
+        self.comm.Allgather(np.array([n_moving_local], dtype=np.int64), counts)
         mean = counts.mean()
         return 0.0 if mean == 0 else counts.max() / mean - 1.0
 
