@@ -6,7 +6,8 @@ The first frame of the 3D cube failure (every field the solver writes, wall
 particles included) is written as the solver writes it, on 1 and 2 ranks
 (collective parallel HDF5); the same number of bytes is then written by
 numpy's tofile from one process to the same directory. Both are timed up
-to an fsync, so the figures are the disk's, not the page cache's.
+to an fsync, so the figures are the disk's, not the page cache's; each is the
+best of three writes.
 """
 
 import argparse
@@ -22,6 +23,7 @@ from mpisph.io.frames import frame_path
 from mpisph.launch import MPI_ENV, ROOT
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+REPEATS = 3  # best of, for each writer: the disk's speed varies from write to write
 
 
 def worker(dp, out):
@@ -82,11 +84,13 @@ def main():
         for ranks in (1, 2):
             cmd = ["mpirun", "-n", str(ranks), sys.executable, os.path.join(HERE, "frames.py"),
                    "--worker", str(a.dp), out]
-            r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600, check=True)
-            seconds, nbytes, n = r.stdout.split()
-            results[ranks] = float(seconds), int(nbytes), int(n)
+            for _ in range(REPEATS):
+                r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600, check=True)
+                seconds, nbytes, n = r.stdout.split()
+                if ranks not in results or float(seconds) < results[ranks][0]:
+                    results[ranks] = float(seconds), int(nbytes), int(n)
         nbytes = results[1][1]
-        plain = min(numpy_write(nbytes, out) for _ in range(2))
+        plain = min(numpy_write(nbytes, out) for _ in range(REPEATS))
     plain_bw = nbytes / plain / 1e6
     print(f"numpy tofile of {nbytes / 1e6:.0f} MB: {plain:.2f} s, {plain_bw:.0f} MB/s  "
           f"[.venv/bin/python benchmarks/frames.py --dp {a.dp}]")

@@ -73,8 +73,9 @@ def _stored(a):
     if a.ndim == 1:
         return np.ascontiguousarray(a)
     flat = a.reshape(a.shape[0], int(np.prod(a.shape[1:])))
-    width = 3 if flat.shape[1] == 2 else flat.shape[1]
-    out = np.zeros((a.shape[0], width), dtype=a.dtype)
+    if flat.shape[1] != 2:
+        return np.ascontiguousarray(flat)  # no copy for a contiguous field
+    out = np.zeros((a.shape[0], 3), dtype=a.dtype)
     out[:, :flat.shape[1]] = flat
     return out
 
@@ -154,8 +155,7 @@ def write_frame(path, comm, fields, *, time, step, dim, params):
         vtk.attrs["Type"] = np.bytes_("PolyData")  # fixed-length ASCII
         _put(vtk.create_dataset("NumberOfPoints", (1,), np.int64), 0,
              [n_total] if root else [], dxpl)
-        points = np.zeros((n, 3))
-        points[:, :dim] = fields["x"]
+        points = _stored(fields["x"])  # 2D positions padded to 3 components
         _put(vtk.create_dataset("Points", (n_total, 3), np.float64), off,
              points, dxpl)
         _write_cells(vtk, comm, n_total, off, n, dxpl)

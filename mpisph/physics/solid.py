@@ -227,6 +227,24 @@ def material_pressure(n, kind, stress, p):
             p[i] = -(stress[i, 0, 0] + stress[i, 1, 1] + stress[i, 2, 2]) / 3.0
 
 
+@njit(cache=True)
+def output_invariants(n, stress, v, von_mises, speed):
+    """von Mises stress sqrt(3/2 s:s) and speed |v| of the particles in [0, n), for frames."""
+    dim = v.shape[1]
+    for i in range(n):
+        mean = (stress[i, 0, 0] + stress[i, 1, 1] + stress[i, 2, 2]) / 3.0
+        ss = 0.0
+        for a in range(3):
+            for b in range(3):
+                s_ab = stress[i, a, b] - (mean if a == b else 0.0)
+                ss += s_ab * s_ab
+        von_mises[i] = np.sqrt(1.5 * ss)
+        vv = 0.0
+        for a in range(dim):
+            vv += v[i, a] * v[i, a]
+        speed[i] = np.sqrt(vv)
+
+
 class SolidScheme:
     """The order of the solid sub-steps; the constitutive model fills in its part.
 
@@ -312,11 +330,8 @@ class SolidScheme:
 
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles: von Mises, vertical stress, speed."""
-        sig = pa.stress[:n]
-        dev = sig - np.trace(sig, axis1=1, axis2=2)[:, None, None] / 3.0 * np.eye(3)
+        von_mises = np.empty(n)
+        speed = np.empty(n)
+        output_invariants(n, pa.stress, pa.v, von_mises, speed)
         vertical = pa.dim - 1
-        return {
-            "von_mises": np.sqrt(1.5 * np.sum(dev * dev, axis=(1, 2))),
-            "vertical_stress": sig[:, vertical, vertical].copy(),
-            "speed": np.linalg.norm(pa.v[:n], axis=1),
-        }
+        return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical, vertical].copy(), "speed": speed}
