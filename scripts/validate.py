@@ -237,9 +237,10 @@ def column_collapse(ranks):
             "profiles are the highest particle per dp-wide bin. The paper's text does not give the times of "
             "its Figs. 15-16 nor the experimental profiles, so profiles are drawn every 0.1 s without an "
             "experimental overlay. L = 0.1 is the same command with `--set L=0.1`. "
-            "Known gap: with UTVF the one-particle-thin toe of the deposit keeps creeping at about 1-3 % of "
-            "the peak speed (the value varies from run to run with round-off, since plastic branches flip at "
-            "the free corner); the tangential UTVF shift of the toe's surface particles drives it: the same "
+            "Known gap: with UTVF the one-particle-thin toe of the deposit keeps creeping, at about 1 % of the "
+            "peak speed at this resolution and 1-3 % at dp = 0.005 (the value varies from run to run with "
+            "round-off, since plastic branches flip at the free corner), and the runout keeps growing slowly; "
+            "the tangential UTVF shift of the toe's surface particles drives it: the same "
             "deposit continued for 0.15 s with `--set stabiliser=none` (row above, `--restart` of the last "
             "frame) is at rest.")
     return "Granular column collapse, L = 0.2 m and 0.1 m (dp = 0.0025)", cmd, rows, image, note
