@@ -39,16 +39,6 @@ def cell_order(x, n, radius, origin):
 
 
 @njit(inline="always")
-def pair_distance(x, i, j):
-    """|x_i - x_j| (inlined into the pair loops)."""
-    r2 = 0.0
-    for a in range(x.shape[1]):
-        d = x[i, a] - x[j, a]
-        r2 += d * d
-    return np.sqrt(r2)
-
-
-@njit(inline="always")
 def pair_difference(a, i, j):
     """a_i - a_j of a 2- or 3-vector field as three scalars (the third is 0 in 2D).
 
@@ -63,6 +53,12 @@ def pair_offset(x, i, j):
     """x_i - x_j as three scalars (``pair_difference``) and |x_i - x_j|."""
     d0, d1, d2 = pair_difference(x, i, j)
     return d0, d1, d2, np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+
+
+@njit(inline="always")
+def pair_distance(x, i, j):
+    """|x_i - x_j| (``pair_offset``, inlined into the pair loops)."""
+    return pair_offset(x, i, j)[3]
 
 
 @njit(cache=True)

@@ -50,6 +50,20 @@ NO_SHIFT_DIVERGENCE = 0.6  # times the dimension (000_ Sec. 3.3)
 
 
 @njit(cache=True)
+def kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel):
+    """g_i = sum_j V_j grad_i W_ij as three scalars (the third is 0 in 2D); called once per particle."""
+    g0 = g1 = g2 = 0.0
+    for s in range(start[i], start[i + 1]):
+        j = nbr[s]
+        d0, d1, d2, r = pair_offset(xc, i, j)
+        f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+        g0 += f * d0
+        g1 += f * d1
+        g2 += f * d2
+    return g0, g1, g2
+
+
+@njit(cache=True)
 def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
     """Add the limited transport-velocity shift of 001_ Eq. 16 to the positions ``x``."""
     dim = xc.shape[1]
@@ -57,19 +71,8 @@ def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        g0 = 0.0
-        g1 = 0.0
-        g2 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0 = xc[i, 0] - xc[j, 0]
-            d1 = xc[i, 1] - xc[j, 1]
-            d2 = xc[i, 2] - xc[j, 2] if dim == 3 else 0.0
-            r = (d0 * d0 + d1 * d1 + d2 * d2) ** 0.5
-            f = 2.0 * mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            g0 += f * d0
-            g1 += f * d1
-            g2 += f * d2
+        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel)
+        g0, g1, g2 = 2.0 * g0, 2.0 * g1, 2.0 * g2  # the doubled residue of the module docstring
         norm2 = h2 * (g0 * g0 + g1 * g1 + g2 * g2)
         if norm2 <= LIMITER_THRESHOLD:
             continue
@@ -91,14 +94,7 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
         if cls[i] != surface.INNER and (not unified or cls[i] == surface.SPLASHED
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
-        g0 = g1 = g2 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            g0 += f * d0
-            g1 += f * d1
-            g2 += f * d2
+        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel)
         if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35)
             n0 = B[i, 0, 0] * g0 + B[i, 0, 1] * g1
             n1 = B[i, 1, 0] * g0 + B[i, 1, 1] * g1
