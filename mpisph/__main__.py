@@ -142,13 +142,15 @@ def run(args, comm):
         particles, t, step = particles_from_case(comm, case, scheme), 0.0, 0
     else:
         particles, t, step = particles_from_frame(comm, frame, scheme, case.stabiliser), frame["t"], frame["step"]
+    case.forget_particles()
+    restarted, frame = frame is not None, None  # the global arrays of the frame are not kept either
     out_dir = args.out or os.path.join("runs", args.case)
     progress = Progress(comm, quiet=args.quiet)
     sim = Simulation(comm, case, values, particles, scheme, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, scheme, case.probes), append=frame is not None,
-                                  restart_time=t if frame is not None else None)
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, scheme, case.probes), append=restarted,
+                                  restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step
     try:

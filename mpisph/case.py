@@ -132,14 +132,21 @@ class Case:
         self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
+        self.probe_origins = {name: self._initial_position(gid) for name, gid in self.probes.items()}
 
-    def initial_position(self, gid):
+    def _initial_position(self, gid):
         """Initial position of the moving or clamped particle with global id ``gid``."""
         for b in self.bodies:
             if gid < len(b.x):
                 return np.asarray(b.x[gid], float)
             gid -= len(b.x)
         raise KeyError(gid)
+
+    def forget_particles(self):
+        """Drop the particle arrays of the bodies and walls once the particles are made from
+        them (in 3D they would stay resident for the whole run, about 80 bytes per particle);
+        domain, material and probe origins stay."""
+        self.bodies, self.walls = [], []
 
     def validate(self, support):
         """Raise InputError for a case that cannot run."""

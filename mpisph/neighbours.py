@@ -24,8 +24,7 @@ CELLS_PER_RADIUS = 2
 
 def neighbour_lists(x, gid, kind, n_owned, radius, origin):
     """Neighbours within ``radius`` (strictly) of each owned material particle."""
-    by_gid = np.argsort(gid, kind="stable")
-    return _build(x, kind, n_owned, float(radius), np.asarray(origin, dtype=np.float64), by_gid)
+    return _build(x, gid, kind, n_owned, float(radius), np.asarray(origin, dtype=np.float64))
 
 
 def cell_order(x, n, radius, origin):
@@ -64,16 +63,15 @@ def pair_distance(x, i, j):
 @njit(cache=True)
 def _cells(x, radius, origin):
     n, dim = x.shape
-    c = np.empty((n, 3), dtype=np.int64)
-    c[:, :] = 0
+    c = np.zeros((n, 3), dtype=np.int32)
     for i in range(n):
         for a in range(dim):
-            c[i, a] = np.int64(np.floor((x[i, a] - origin[a]) / radius))
+            c[i, a] = np.int32(np.floor((x[i, a] - origin[a]) / radius))
     return c
 
 
 @njit(cache=True)
-def _build(x, kind, n_owned, radius, origin, by_gid):
+def _build(x, gid, kind, n_owned, radius, origin):
     n, dim = x.shape
     c = _cells(x, radius / CELLS_PER_RADIUS, origin)
     lo = np.zeros(3, np.int64)
@@ -87,23 +85,31 @@ def _build(x, kind, n_owned, radius, origin, by_gid):
     for i in range(n):
         cell_id[i] = (c[i, 0] - lo[0]) + ext[0] * ((c[i, 1] - lo[1]) + ext[1] * (c[i, 2] - lo[2]))
 
-    # counting sort by cell, stable over particles taken in gid order; positions copied in
-    # that order so that the candidates of a row of cells are contiguous in memory
-    cell_start = np.zeros(ncell + 1, np.int64)
+    # counting sort by cell, then by gid inside each cell (insertion sort: a cell holds a
+    # particle or two); positions copied in that order so that the candidates of a row of
+    # cells are contiguous in memory
+    cell_start = np.zeros(ncell + 1, np.int32)  # a rank holds fewer than 2**31 particles
     for i in range(n):
         cell_start[cell_id[i] + 1] += 1
     for k in range(ncell):
         cell_start[k + 1] += cell_start[k]
     fill = cell_start[:-1].copy()
-    sorted_idx = np.empty(n, np.int64)
-    xs = np.empty((n, 3))
-    for k in range(n):
-        i = by_gid[k]
-        s = fill[cell_id[i]]
-        sorted_idx[s] = i
-        for a in range(3):
-            xs[s, a] = x[i, a] if a < dim else 0.0
+    sorted_idx = np.empty(n, np.int32)
+    for i in range(n):
+        sorted_idx[fill[cell_id[i]]] = i
         fill[cell_id[i]] += 1
+    for k in range(ncell):
+        for s in range(cell_start[k] + 1, cell_start[k + 1]):
+            i = sorted_idx[s]
+            t = s
+            while t > cell_start[k] and gid[sorted_idx[t - 1]] > gid[i]:  # stable: equal gids keep their order
+                sorted_idx[t] = sorted_idx[t - 1]
+                t -= 1
+            sorted_idx[t] = i
+    xs = np.empty((n, 3))
+    for s in range(n):
+        for a in range(3):
+            xs[s, a] = x[sorted_idx[s], a] if a < dim else 0.0
 
     r2max = radius * radius
     reach = CELLS_PER_RADIUS

@@ -53,7 +53,7 @@ def global_observables(sim):
     total = np.empty_like(local)
     sim.comm.Allreduce(local, total, op=MPI.SUM)
     k = len(total) - len(probes) * dim
-    displacement = total[k:] - np.concatenate([sim.case.initial_position(g) for g in probes.values()] or [[]])
+    displacement = total[k:] - np.concatenate([sim.case.probe_origins[name] for name in probes] or [[]])
     values = [sim.t, sim.step, sim.dt] + total[:k].tolist() + displacement.tolist()
     out = dict(zip(observable_names(dim, sim.scheme, probes), values))
     out["n"] = int(out["n"])

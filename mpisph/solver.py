@@ -98,8 +98,8 @@ class Simulation:
                 pa.keep_owned(cell_order(pa.x, pa.n_owned, self.support, self.case.domain[0]), 0)
             self.halo.build(pa)
         with self.timer("neighbours"):
+            self.start = self.nbr = self.xc = self._B = None  # freed before the new lists are built
             self.xc = pa.x.copy()
-            self._B = None
             self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned,
                                                    self.support, self.case.domain[0])
         if "surface" in pa.arrays:

@@ -32,6 +32,15 @@ def corrections(x, kind, mass, rho, start, nbr):
     return B
 
 
+def gradients(x, v, mass, rho, kind, B, start, nbr):
+    """L of Eq. 23 of every particle, from the one-particle ``velocity_gradient``."""
+    L = np.zeros((len(x), 3, 3))
+    for i in range(len(x)):
+        velocity_gradient(i, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B,
+                          H, normalisation(KERNEL, H, 2), KERNEL, L[i])
+    return L
+
+
 def test_correction_matrix_is_identity_inside_and_corrects_edges():
     x, kind, mass, rho, start, nbr = block()
     B = corrections(x, kind, mass, rho, start, nbr)
@@ -48,9 +57,7 @@ def test_velocity_gradient_of_a_linear_field_is_exact_up_to_the_corners():
     A = np.array([[0.3, -1.2], [0.7, 0.1]])
     v = x @ A.T
     B = corrections(x, kind, mass, rho, start, nbr)
-    L = np.zeros((len(x), 3, 3))
-    velocity_gradient(len(x), start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B,
-                      H, normalisation(KERNEL, H, 2), KERNEL, L)
+    L = gradients(x, v, mass, rho, kind, B, start, nbr)
     corner = np.minimum(x[:, 0], 0.12 - x[:, 0]) + np.minimum(x[:, 1], 0.10 - x[:, 1]) < 2.5 * DP
     np.testing.assert_allclose(L[~corner, :2, :2], np.broadcast_to(A, L[~corner, :2, :2].shape), atol=1e-9)
     assert np.all(np.isfinite(L)) and np.all(L[:, 2, :] == 0.0)
@@ -72,18 +79,42 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
     shear[:, 2, :2] = shear[:, :2, 2] = 0.0
     B = corrections(x, kind, mass, rho, start, nbr)
     args = (H, normalisation(KERNEL, H, 2), KERNEL)
-    L = np.zeros((n, 3, 3))
-    velocity_gradient(n, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B, *args, L)
+    L = gradients(x, v, mass, rho, kind, B, start, nbr)
     acc = np.zeros((n, 2))
     # c0 = 0: no Riemann dissipation; p = 0: the pure shear part
     T = np.zeros((n, 2, 2))
-    shear_force_tensor(n, kind, shear, np.zeros(n), B, True, T)
-    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, mass, kind, np.zeros_like(x),
-                        0.0, -1.0, *args, np.zeros((n, 2)), acc)
+    shear_force_tensor(n, kind, shear, np.zeros(n), B, T)
+    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, False, mass, kind, np.zeros_like(x),
+                        0.0, -1.0, *args, np.zeros(2), acc)
     power = np.sum(mass[:, None] * v * acc)
     stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))
     assert abs(stress_power) > 1.0
     assert power == pytest.approx(-stress_power, rel=1e-10)
+
+
+def test_uncorrected_shear_force_from_the_stress_is_eq_25():
+    """Granular materials pass the stress itself and s = sigma + p I is formed pair by pair:
+    the same accelerations as the tensor s_i summed as (s_i + s_j) e_ij W' (Eq. 25), wall
+    partners included (they take the state of i), and gravity added once."""
+    rng = np.random.default_rng(5)
+    x, kind, mass, rho, start, nbr = block()
+    x = x + rng.uniform(-0.2, 0.2, x.shape) * DP
+    kind[x[:, 1] < DP] = 1  # a no-slip floor row
+    n = len(x)
+    start, nbr = neighbour_lists(x, np.arange(n), kind, n, 2 * H, np.zeros(2) - DP)
+    v, p = rng.normal(size=(n, 2)), rng.normal(size=n) * 1e3
+    stress = rng.normal(size=(n, 3, 3)) * 1e3
+    stress = stress + stress.transpose(0, 2, 1)
+    normal = np.zeros_like(x)
+    normal[:, 1] = 1.0
+    args = (mass, kind, normal, 30.0, 40.0, H, normalisation(KERNEL, H, 2), KERNEL, np.array([0.0, -9.81]))
+    on_the_fly, from_tensor = np.zeros((n, 2)), np.zeros((n, 2))
+    stress_acceleration(n, start, nbr, x, v, rho, p, stress, True, *args, on_the_fly)
+    s = stress[:, :2, :2] + p[:, None, None] * np.eye(2)
+    stress_acceleration(n, start, nbr, x, v, rho, p, s, False, *args, from_tensor)
+    moving = kind == 0
+    assert np.abs(on_the_fly[moving] + [0.0, 9.81]).max() > 1.0
+    np.testing.assert_array_equal(on_the_fly[moving], from_tensor[moving])
 
 
 def test_degenerate_neighbourhood_gets_a_finite_correction():

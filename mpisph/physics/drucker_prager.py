@@ -33,15 +33,20 @@ from numba import njit
 from ..kernels import dw
 from ..neighbours import pair_distance
 from ..particles import Field, is_wall
-from .solid import material_pressure
+from .solid import material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
+
+
+# storage of a symmetric 3 x 3 tensor as 6 numbers: component (a, b) is at SYMMETRIC[a, b]
+SYMMETRIC = np.array([[0, 3, 4], [3, 1, 5], [4, 5, 2]])
 
 
 @njit(cache=True)
 def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0,
                      h, sigma, kernel, rate):
-    """rate_i = the diffusion term of the module docstring (vertical axis = last axis).
+    """rate_i = the diffusion term of the module docstring (vertical axis = last axis), as the
+    6 components of a symmetric tensor (``SYMMETRIC``).
 
     With f_ij the pair weight, the sum is sigma_i sum f - sum f sigma_j - (sum f dsigma^geo_ij),
     the stresses being symmetric.
@@ -68,14 +73,12 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
             s11 += f * stress[j, 1, 1]
             s12 += f * stress[j, 1, 2]
             s22 += f * stress[j, 2, 2]
-        rate[i, 0, 0], rate[i, 1, 1], rate[i, 2, 2] = s00, s11, s22
-        rate[i, 0, 1] = rate[i, 1, 0] = s01
-        rate[i, 0, 2] = rate[i, 2, 0] = s02
-        rate[i, 1, 2] = rate[i, 2, 1] = s12
+        sums = (s00, s11, s22, s01, s02, s12)
         for a in range(3):
-            for b in range(3):
-                rate[i, a, b] = f_sum * stress[i, a, b] - rate[i, a, b]
-            rate[i, a, a] -= geo_sum if a == vert else k0 * geo_sum
+            for b in range(a, 3):
+                k = SYMMETRIC[a, b]
+                rate[i, k] = f_sum * stress[i, a, b] - sums[k]
+            rate[i, a] -= geo_sum if a == vert else k0 * geo_sum
 
 
 @njit(cache=True)
@@ -114,31 +117,34 @@ def return_mapping(sig, alpha_phi, k_c, dev):
 
 
 @njit(cache=True)
-def drucker_prager_update(n, kind, L, diffusion, K, G, alpha_phi, alpha_psi, k_c, dt,
-                          stress, plastic_strain):
-    """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain."""
+def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel,
+                          diffusion, K, G, alpha_phi, alpha_psi, k_c, dt, stress, plastic_strain):
+    """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain, with
+    L of Eq. 23 from ``velocity_gradient`` particle by particle."""
+    L = np.empty((3, 3))
     dev = np.empty((3, 3))
     rate = np.empty((3, 3))
     sig = np.empty((3, 3))
     for i in range(n):
         if is_wall(kind[i]):
             continue
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
         for a in range(3):
             for b in range(3):
                 sig[a, b] = stress[i, a, b]
         i1, sqrt_j2 = _deviator(sig, dev)
-        tr_d = L[i, 0, 0] + L[i, 1, 1] + L[i, 2, 2]
+        tr_d = L[0, 0] + L[1, 1] + L[2, 2]
         s_d = 0.0
         for a in range(3):
             for b in range(3):
-                d_ab = 0.5 * (L[i, a, b] + L[i, b, a])
+                d_ab = 0.5 * (L[a, b] + L[b, a])
                 s_d += dev[a, b] * d_ab
                 r = 2.0 * G * d_ab
                 for c in range(3):
-                    w_ac = 0.5 * (L[i, a, c] - L[i, c, a])
-                    w_bc = 0.5 * (L[i, b, c] - L[i, c, b])
+                    w_ac = 0.5 * (L[a, c] - L[c, a])
+                    w_bc = 0.5 * (L[b, c] - L[c, b])
                     r += sig[a, c] * w_bc + w_ac * sig[c, b]
-                rate[a, b] = r + diffusion[i, a, b]
+                rate[a, b] = r + diffusion[i, SYMMETRIC[a, b]]
             rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
         gamma_dot = 0.0
         if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:
@@ -189,11 +195,11 @@ class DruckerPragerModel:
         pa = s.particles
         material_pressure(pa.n_owned, pa.kind, pa.stress, pa.p)
 
-    def update_stress(self, s, L, dt):
+    def update_stress(self, s, gradient, dt):
         pa, m = s.particles, self.material
         n = pa.n_owned
-        diffusion = s.workspace.get("stress_diffusion", n, (3, 3))
+        diffusion = s.workspace.get("stress_diffusion", n, (6,))
         stress_diffusion(n, s.start, s.nbr, s.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
                          m.k0, m.c0, *s.kernel_args, diffusion)
-        drucker_prager_update(n, pa.kind, L, diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
+        drucker_prager_update(n, *gradient, diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)

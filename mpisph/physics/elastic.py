@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from ..particles import WALL, WALL_SLIP, Field, is_wall
+from .solid import velocity_gradient
 
 
 @njit(cache=True)
@@ -34,20 +35,23 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
 
 
 @njit(cache=True)
-def shear_stress_update(n, kind, L, G, dt, shear):
-    """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation)."""
+def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, G, dt, shear):
+    """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation),
+    with L of Eq. 23 from ``velocity_gradient`` particle by particle."""
+    L = np.empty((3, 3))
     rate = np.empty((3, 3))
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        trace = L[i, 0, 0] + L[i, 1, 1] + L[i, 2, 2]
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
+        trace = L[0, 0] + L[1, 1] + L[2, 2]
         for a in range(3):
             for b in range(3):
-                d_ab = 0.5 * (L[i, a, b] + L[i, b, a])
+                d_ab = 0.5 * (L[a, b] + L[b, a])
                 r = 2.0 * G * d_ab
                 for c in range(3):
-                    w_ac = 0.5 * (L[i, a, c] - L[i, c, a])
-                    w_bc = 0.5 * (L[i, b, c] - L[i, c, b])
+                    w_ac = 0.5 * (L[a, c] - L[c, a])
+                    w_bc = 0.5 * (L[b, c] - L[c, b])
                     r += shear[i, a, c] * w_bc + w_ac * shear[i, c, b]
                 rate[a, b] = r
         for a in range(3):
@@ -76,9 +80,9 @@ class ElasticModel:
         pa, m = s.particles, self.material
         elastic_pressure(pa.n_owned, pa.kind, pa.rho, m.rho0, m.c0, pa.shear_stress, pa.p, pa.stress)
 
-    def update_stress(self, s, L, dt):
+    def update_stress(self, s, gradient, dt):
         pa = s.particles
-        shear_stress_update(pa.n_owned, pa.kind, L, self.material.G, dt, pa.shear_stress)
+        shear_stress_update(pa.n_owned, *gradient, self.material.G, dt, pa.shear_stress)
 
     def energies(self, pa, n):
         """Strain energy sum V (s:s/4G + p^2/2K) of the material particles."""

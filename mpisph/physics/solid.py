@@ -53,7 +53,7 @@ from ..integrators import density_half, drift_half, kick
 from ..kernels import dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
-from .fluid import continuity, prior_acceleration
+from .fluid import continuity
 from .walls import wall_relative_velocity
 
 DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
@@ -111,82 +111,78 @@ def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
 
 
 @njit(cache=True)
-def velocity_gradient(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L):
-    """L_i of 000_ Eq. 23 as a 3 x 3 tensor (zero third row and column in 2D).
+def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L):
+    """L_i of 000_ Eq. 23 of the material particle i into the 3 x 3 ``L`` (zero third row and
+    column in 2D). The stress updates call it particle by particle, so that no n x 3 x 3 array
+    of gradients is ever stored.
 
     B_i is the same for every pair of i, so the sum runs uncorrected,
     M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij, and L_i = M_i B_i^T.
     """
     dim = xc.shape[1]
-    M = np.empty((3, 3))
-    for i in range(n):
-        if is_wall(kind[i]):
-            continue
-        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            u0, u1, u2 = pair_difference(v, i, j)
-            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
-                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
-            f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            m00 += f * u0 * d0
-            m01 += f * u0 * d1
-            m02 += f * u0 * d2
-            m10 += f * u1 * d0
-            m11 += f * u1 * d1
-            m12 += f * u1 * d2
-            m20 += f * u2 * d0
-            m21 += f * u2 * d1
-            m22 += f * u2 * d2
-        M[0, 0], M[0, 1], M[0, 2] = m00, m01, m02
-        M[1, 0], M[1, 1], M[1, 2] = m10, m11, m12
-        M[2, 0], M[2, 1], M[2, 2] = m20, m21, m22
-        L[i, :, :] = 0.0
-        for a in range(dim):
-            for b in range(dim):
-                acc = 0.0
-                for c in range(dim):
-                    acc += M[a, c] * B[i, b, c]
-                L[i, a, b] = acc
+    m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
+    for s in range(start[i], start[i + 1]):
+        j = nbr[s]
+        d0, d1, d2, r = pair_offset(xc, i, j)
+        u0, u1, u2 = pair_difference(v, i, j)
+        if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+            u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+        f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+        m00 += f * u0 * d0
+        m01 += f * u0 * d1
+        m02 += f * u0 * d2
+        m10 += f * u1 * d0
+        m11 += f * u1 * d1
+        m12 += f * u1 * d2
+        m20 += f * u2 * d0
+        m21 += f * u2 * d1
+        m22 += f * u2 * d2
+    M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
+    L[:, :] = 0.0
+    for a in range(dim):
+        for b in range(dim):
+            acc = 0.0
+            for c in range(dim):
+                acc += M[a][c] * B[i, b, c]
+            L[a, b] = acc
 
 
 @njit(cache=True)
-def shear_force_tensor(n, kind, stress, p, B, corrected, T):
-    """T_i = s_i B_i (``corrected``) or s_i, the in-plane block, with s = sigma + p I, for the
-    material particles in [0, n), ghosts included: the shear part of the momentum sum is
-    sum_j V_j (T_i + T_j) e_ij W'_ij."""
+def shear_force_tensor(n, kind, stress, p, B, T):
+    """T_i = s_i B_i, the in-plane block, with s = sigma + p I, for the material particles in
+    [0, n), ghosts included: the shear part of the corrected momentum sum (elastic solids)."""
     dim = T.shape[1]
     for i in range(n):
         if is_wall(kind[i]):
             continue
         for a in range(dim):
             for b in range(dim):
-                if corrected:
-                    acc = p[i] * B[i, a, b]
-                    for c in range(dim):
-                        acc += stress[i, a, c] * B[i, c, b]
-                else:
-                    acc = stress[i, a, b] + (p[i] if a == b else 0.0)
+                acc = p[i] * B[i, a, b]
+                for c in range(dim):
+                    acc += stress[i, a, c] * B[i, c, b]
                 T[i, a, b] = acc
 
 
 @njit(inline="always")
-def _tensor_times(T, k, d0, d1, d2):
-    """T_k (d0, d1, d2) as three scalars, for an in-plane block T of 2 x 2 or 3 x 3."""
-    if T.shape[1] == 2:
-        return T[k, 0, 0] * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + T[k, 1, 1] * d1, 0.0
-    return (T[k, 0, 0] * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
-            T[k, 1, 0] * d0 + T[k, 1, 1] * d1 + T[k, 1, 2] * d2,
-            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + T[k, 2, 2] * d2)
+def _tensor_times(T, k, pk, dim, d0, d1, d2):
+    """(T_k + pk I) (d0, d1, d2) as three scalars, over the in-plane block of T."""
+    if dim == 2:
+        return (T[k, 0, 0] + pk) * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + (T[k, 1, 1] + pk) * d1, 0.0
+    return ((T[k, 0, 0] + pk) * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
+            T[k, 1, 0] * d0 + (T[k, 1, 1] + pk) * d1 + T[k, 1, 2] * d2,
+            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + (T[k, 2, 2] + pk) * d2)
 
 
 @njit(cache=True)
-def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
-                        c0, eta, h, sigma, kernel, prior, dv_dt):
-    """dv/dt of the moving particles (module docstring), with T from ``shear_force_tensor``;
-    eta <= 0 means beta = 1. T_i is the same for every pair of i and multiplies
-    sum_j V_j e_ij W'_ij once; a wall partner takes the state of i."""
+def stress_acceleration(n, start, nbr, xc, v, rho, p, T, deviatoric, mass, kind, normal,
+                        c0, eta, h, sigma, kernel, gravity, dv_dt):
+    """dv/dt of the moving particles (module docstring); eta <= 0 means beta = 1.
+
+    The shear part takes T = s B from ``shear_force_tensor`` (corrected), or with
+    ``deviatoric`` the stress itself, s = sigma + p I being formed on the fly (Eq. 25 as
+    printed: no n x 3 x 3 copy). T_i is the same for every pair of i and multiplies
+    sum_j V_j e_ij W'_ij once; a wall partner takes the state of i.
+    """
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
@@ -205,18 +201,18 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
             beta = 1.0 if eta <= 0.0 else min(eta * max(-u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[k] - beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
             f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            t0, t1, t2 = _tensor_times(T, k, d0, d1, d2)
+            t0, t1, t2 = _tensor_times(T, k, p[k] if deviatoric else 0.0, dim, d0, d1, d2)
             a0 += f * (t0 - pressure * d0)
             a1 += f * (t1 - pressure * d1)
             a2 += f * (t2 - pressure * d2)
             g0 += f * d0
             g1 += f * d1
             g2 += f * d2
-        t0, t1, t2 = _tensor_times(T, i, g0, g1, g2)
-        dv_dt[i, 0] = prior[i, 0] + (a0 + t0) / rho[i]
-        dv_dt[i, 1] = prior[i, 1] + (a1 + t1) / rho[i]
+        t0, t1, t2 = _tensor_times(T, i, p[i] if deviatoric else 0.0, dim, g0, g1, g2)
+        dv_dt[i, 0] = gravity[0] + (a0 + t0) / rho[i]
+        dv_dt[i, 1] = gravity[1] + (a1 + t1) / rho[i]
         if dim == 3:
-            dv_dt[i, 2] = prior[i, 2] + (a2 + t2) / rho[i]
+            dv_dt[i, 2] = gravity[2] + (a2 + t2) / rho[i]
 
 
 @njit(cache=True)
@@ -252,7 +248,7 @@ class SolidScheme:
     extra fields, ``eta`` of the momentum limiter, ``corrected_shear_force``
     (B on the shear part of the momentum sum, module docstring),
     ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
-    current density or stress), ``update_stress(s, L, dt)``, and the names and
+    current density or stress), ``update_stress(s, gradient, dt)`` (``gradient``: the arguments of ``velocity_gradient`` after i), and the names and
     values of its own energies (``observable_names``, ``energies(pa, n)``, if any).
     """
 
@@ -262,7 +258,6 @@ class SolidScheme:
     base_fields = (
         Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
         Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
-        Field("prior", ("dim",), np.float64, "gravity [m/s^2]"),
         Field("stress", (3, 3), np.float64, "Cauchy stress, tension positive [Pa]"),
         Field("B", ("dim", "dim"), np.float64, "kernel-gradient correction matrix (000_ Eq. 24)"),
     )
@@ -282,15 +277,11 @@ class SolidScheme:
         return self.m.c0, 0.0
 
     def configure(self, s):
-        """Once per advection step: correction matrices on the frozen positions (ghosts too:
-        the momentum sum reads them), gravity."""
-        pa, k = s.particles, s.kernel_args
-        n = pa.n_owned
+        """Once per advection step: correction matrices on the frozen positions (ghosts too
+        when the momentum sum reads them)."""
         s.correction_matrices()  # into pa.B
         if self.model.corrected_shear_force:
-            s.halo.refresh(pa, ["B"])
-        prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
-                           self.gravity, 0.0, *k, pa.prior)
+            s.halo.refresh(s.particles, ["B"])
 
     def acoustic_step(self, s, dt):
         pa, k = s.particles, s.kernel_args
@@ -301,19 +292,22 @@ class SolidScheme:
         self.model.pressure(s)
         s.halo.refresh(pa, ["rho", "p", "stress"])
         # 3. momentum and kick (000_ Eq. 40), then the new velocities of ghosts
-        T = s.workspace.get("shear_force", pa.n, (pa.dim, pa.dim))
-        shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, self.model.corrected_shear_force, T)
-        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind, pa.normal,
-                            self.m.c0, self.model.eta, *k, pa.prior, pa.dv_dt)
+        if self.model.corrected_shear_force:
+            T = s.workspace.get("shear_force", pa.n, (pa.dim, pa.dim))
+            shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, T)
+        else:
+            T = pa.stress
+        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, not self.model.corrected_shear_force,
+                            pa.mass, pa.kind, pa.normal, self.m.c0, self.model.eta, *k, self.gravity, pa.dv_dt)
         kick(n, pa.kind, pa.v, pa.dv_dt, dt)
         s.halo.refresh(pa, ["v"])
-        # 4. second half: positions (000_ Eq. 41), velocity gradient, density, stress
+        # 4. second half: positions (000_ Eq. 41), density rate, stress from the velocity
+        #    gradient (Eq. 23, particle by particle inside the model's update), density
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
-        L = s.workspace.get("velocity_gradient", n, (3, 3))
-        velocity_gradient(n, s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, *k, L)
         continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
                    self.gravity, self.m.c0, self.model.riemann_continuity, *k, pa.drho_dt)
-        self.model.update_stress(s, L, dt)  # reads rho of neighbours: before density_half
+        gradient = (s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, *k)
+        self.model.update_stress(s, gradient, dt)  # reads rho of neighbours: before density_half
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
 
     @property
