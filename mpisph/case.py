@@ -70,8 +70,8 @@ RUN_PARAMS = {
     "h_factor": Param(1.3, "-", "smoothing length h = h_factor * dp", positive=True),
     "time_stepping": Param("dual", "-", "dual: 001_ Eqs. 9-11; single: 000_ Eq. 38",
                            choices=("dual", "single")),
-    "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean particles per rank - 1 exceeds this",
-                                 positive=True),
+    "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean work per rank - 1 exceeds this "
+                                 "(work: neighbour pairs)", positive=True),
     "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",
                                positive=True),
 }

@@ -4,8 +4,9 @@ Per advection step, on every rank:
 
     1. check       stop on a non-finite value or a particle outside the domain
     2. wrap        periodic positions back into the domain
-    3. migrate     owned particles that crossed a cut move to their new rank
-    4. rebalance   new cuts when the imbalance exceeds the threshold; every
+    3. rebalance   new cuts when the imbalance of the work (neighbour pairs of the
+                   last configuration) exceeds the threshold
+    4. migrate     owned particles that crossed a cut move to their new rank; every
                    CELL_SORT_EVERY configurations the owned particles are
                    re-sorted by cell in memory (sums do not depend on it)
     5. halo        ghosts within the kernel support of each cut (periodic images too)
@@ -33,9 +34,8 @@ from .io.frames import frame_path, write_frame
 from .kernels import KERNELS, SUPPORT_FACTOR, normalisation
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
-from .parallel.decomposition import SlabDecomposition, migrate, moving_coordinates
+from .parallel.decomposition import SlabDecomposition, migrate, particle_work
 from .parallel.halo import Halo
-from .particles import MOVING
 from .physics.solid import correction_matrix
 from .stabilisers.transport_velocity import STABILISERS
 from .timing import PhaseTimer
@@ -89,11 +89,11 @@ class Simulation:
         self._check()
         with self.timer("exchange"):
             self._wrap_periodic()
+            work = particle_work(pa, self.start)  # the rows of the last configuration, before they move
+            first = self.advection_steps == 0  # cut once on counts, once on the pairs of the first lists
+            if first or self.decomp.imbalance(work.sum()) > self.params["rebalance_threshold"]:
+                self.decomp.balance(pa.owned("x")[:, self.decomp.axis], work)
             migrate(pa, self.decomp)
-            n_moving = int(np.count_nonzero(pa.owned("kind") == MOVING))
-            if self.decomp.imbalance(n_moving) > self.params["rebalance_threshold"]:
-                self.decomp.balance(moving_coordinates(pa, self.decomp.axis))
-                migrate(pa, self.decomp)
             if self.advection_steps % CELL_SORT_EVERY == 0:
                 pa.keep_owned(cell_order(pa.x, pa.n_owned, self.support, self.case.domain[0]), 0)
             self.halo.build(pa)

@@ -45,7 +45,7 @@ def test_halo_gives_every_neighbour(dim, periodic):
     pa.x[:] = x_all[mine]
     pa.gid[:] = gid_all[mine]
     migrate(pa, decomp)
-    decomp.balance(pa.owned("x")[:, 0])
+    decomp.balance(pa.owned("x")[:, 0], np.ones(pa.n_owned))
     migrate(pa, decomp)
     lo, hi = decomp.slab()
     assert np.all((pa.owned("x")[:, 0] >= lo) & (pa.owned("x")[:, 0] < hi))
