@@ -6,10 +6,10 @@ histogram of the work of the particles so that every rank gets about the same
 share (with support-wide bins a 3D column 16 supports wide could only be cut
 to within 3 % of the half). The work of a particle is its number of neighbour
 pairs in the last configuration (walls have none), or 1 for a moving particle
-before the first configuration: wall contacts and free surfaces change the pairs
-per particle by 10 % and more, so particle counts alone leave ranks waiting. The first and last cuts are
-open (-inf, +inf) so every particle has an owner. A run may not use more ranks
-than the domain is supports long.
+before the first configuration: wall contacts and free surfaces change the
+pairs per particle by 10 % and more, so particle counts alone leave ranks
+waiting. The first and last cuts are open (-inf, +inf) so every particle has an
+owner. A run may not use more ranks than the domain is supports long.
 """
 
 import math

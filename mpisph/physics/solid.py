@@ -261,9 +261,11 @@ class SolidScheme:
     The model (``ElasticModel`` or ``DruckerPragerModel``) provides: its
     extra fields, ``eta`` of the momentum limiter, ``corrected_shear_force``
     (B on the shear part of the momentum sum, module docstring),
-    ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the total stress from the
-    current density or stress), ``update_stress(s, gradient, dt)`` (``gradient``: the arguments of ``velocity_gradient`` after i), and the names and
-    values of its own energies (``observable_names``, ``energies(pa, n)``, if any).
+    ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the
+    total stress from the current density or stress), ``update_stress(s,
+    gradient, dt)`` (``gradient``: the arguments of ``velocity_gradient`` after
+    i), and the names and values of its own energies (``observable_names``,
+    ``energies(pa, n)``, if any).
     """
 
     needs_surface = True
