@@ -16,6 +16,7 @@ from .physics.elastic import ElasticModel
 from .physics.fluid import FluidScheme, lattice_kernel_sum
 from .physics.solid import SolidScheme
 from .stabilisers.transport_velocity import STABILISERS
+from .tensors import packed
 
 
 def make_scheme(case, params):
@@ -63,7 +64,7 @@ def particles_from_case(comm, case, scheme):
             kind[b.clamped] = CLAMPED
         kinds.append(kind)
         vs.append(np.zeros((n, dim)) if b.velocity is None else b.velocity)
-        stresses.append(np.zeros((n, 3, 3)) if b.stress is None else b.stress)
+        stresses.append(np.zeros((n, 6)) if b.stress is None else packed(b.stress))
         if b.pressure is not None:
             ps.append(b.pressure)
         elif b.stress is not None:
@@ -77,7 +78,7 @@ def particles_from_case(comm, case, scheme):
         kinds.append(np.full(n, WALL_SLIP if wl.slip else WALL, np.int8))
         vs.append(np.zeros((n, dim)) if wl.velocity is None else np.broadcast_to(wl.velocity, (n, dim)))
         ps.append(np.zeros(n))
-        stresses.append(np.zeros((n, 3, 3)))
+        stresses.append(np.zeros((n, 6)))
         normals.append(wl.normal)
     kind = np.concatenate(kinds)
     p = np.concatenate(ps)
@@ -98,6 +99,8 @@ def particles_from_case(comm, case, scheme):
 
 
 def particles_from_frame(comm, frame, scheme, stabiliser):
-    """Particles (walls included) from ``read_frame(path, walls=True)``."""
-    arrays = {k: v for k, v in frame.items() if isinstance(v, np.ndarray)}
+    """Particles (walls included) from ``read_frame(path, walls=True)``; symmetric tensors that a
+    frame of format 1 holds as (3, 3) are packed (tensors.py)."""
+    arrays = {k: (packed(v) if v.ndim == 3 and v.shape[1] == v.shape[2] else v)
+              for k, v in frame.items() if isinstance(v, np.ndarray)}
     return _share(comm, arrays, particle_fields(scheme, stabiliser), frame["dim"])

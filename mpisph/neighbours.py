@@ -60,30 +60,46 @@ def pair_distance(x, i, j):
     return pair_offset(x, i, j)[3]
 
 
+@njit(inline="always")
+def _cell(x, i, a, width, origin):
+    """Cell coordinate of particle i along axis a (0 for the missing third axis in 2D)."""
+    return np.int64(np.floor((x[i, a] - origin[a]) / width)) if a < x.shape[1] else 0
+
+
 @njit(cache=True)
 def _cells(x, radius, origin):
     n, dim = x.shape
     c = np.zeros((n, 3), dtype=np.int32)
     for i in range(n):
         for a in range(dim):
-            c[i, a] = np.int32(np.floor((x[i, a] - origin[a]) / radius))
+            c[i, a] = _cell(x, i, a, radius, origin)
     return c
 
 
 @njit(cache=True)
 def _build(x, gid, kind, n_owned, radius, origin):
     n, dim = x.shape
-    c = _cells(x, radius / CELLS_PER_RADIUS, origin)
+    width = radius / CELLS_PER_RADIUS
+    # the cell grid spans the particles' cells; cell coordinates are recomputed where needed
+    # rather than stored (the search's transients are what sets a 3D run's peak memory)
     lo = np.zeros(3, np.int64)
     ext = np.ones(3, np.int64)
     if n > 0:
+        hi = np.zeros(3, np.int64)
         for a in range(dim):
-            lo[a] = c[:, a].min()
-            ext[a] = c[:, a].max() - lo[a] + 1
+            lo[a] = hi[a] = _cell(x, 0, a, width, origin)
+        for i in range(1, n):
+            for a in range(dim):
+                ca = _cell(x, i, a, width, origin)
+                lo[a] = min(lo[a], ca)
+                hi[a] = max(hi[a], ca)
+        for a in range(dim):
+            ext[a] = hi[a] - lo[a] + 1
     ncell = ext[0] * ext[1] * ext[2]
-    cell_id = np.empty(n, np.int64)
+    cell_id = np.empty(n, np.int32)  # ncell < 2**31: cell_start below has ncell + 1 entries
     for i in range(n):
-        cell_id[i] = (c[i, 0] - lo[0]) + ext[0] * ((c[i, 1] - lo[1]) + ext[1] * (c[i, 2] - lo[2]))
+        cell_id[i] = ((_cell(x, i, 0, width, origin) - lo[0]) + ext[0] * ((_cell(x, i, 1, width, origin) - lo[1])
+                      + ext[1] * (_cell(x, i, 2, width, origin) - lo[2])))
 
     # counting sort by cell, then by gid inside each cell (insertion sort: a cell holds a
     # particle or two); positions copied in that order so that the candidates of a row of
@@ -125,15 +141,17 @@ def _build(x, gid, kind, n_owned, radius, origin):
         xi0 = x[i, 0]
         xi1 = x[i, 1]
         xi2 = x[i, 2] if dim == 3 else 0.0
-        cx = c[i, 0] - lo[0]
+        cx = _cell(x, i, 0, width, origin) - lo[0]
+        cy0 = _cell(x, i, 1, width, origin) - lo[1]
+        cz0 = _cell(x, i, 2, width, origin) - lo[2]
         x_lo = max(cx - reach, 0)
         x_hi = min(cx + reach, ext[0] - 1)
         for dz in range(dz_lo, dz_hi + 1):
-            cz = c[i, 2] - lo[2] + dz
+            cz = cz0 + dz
             if cz < 0 or cz >= ext[2]:
                 continue
             for dy in range(-reach, reach + 1):
-                cy = c[i, 1] - lo[1] + dy
+                cy = cy0 + dy
                 if cy < 0 or cy >= ext[1]:
                     continue
                 row = ext[0] * (cy + ext[1] * cz)

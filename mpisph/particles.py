@@ -13,16 +13,20 @@ of its first n rows. A new halo or a migration then reuses the buffers and
 rewrites only the rows that change, instead of allocating every field anew
 each step.
 
-Fields are declared once with a per-particle shape (``()``, ``("dim",)`` or
-``(3, 3)``); packing to and from flat float64 rows is what the parallel
-package uses to move particles and ghosts between ranks. Integer fields go
-through float64 exactly (global ids stay below 2**53).
+Fields are declared once with a per-particle shape (``()``, ``("dim",)``,
+``(6,)`` for a packed symmetric 3 x 3 tensor or ``("sym",)`` for a packed
+symmetric dim x dim one, tensors.py); packing to and from flat float64 rows
+is what the parallel package uses to move particles and ghosts between
+ranks. Integer fields go through float64 exactly (global ids stay below
+2**53).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
+
+from . import tensors
 
 MOVING = 0
 WALL = 1  # fixed wall particle, no-slip
@@ -156,4 +160,4 @@ class Particles:
 
 
 def _shape(field, dim):
-    return tuple(dim if s == "dim" else s for s in field.shape)
+    return tuple(dim if s == "dim" else tensors.size(dim) if s == "sym" else s for s in field.shape)

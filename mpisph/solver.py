@@ -27,7 +27,7 @@ import time as wallclock
 import numpy as np
 from mpi4py import MPI
 
-from . import integrators, surface
+from . import integrators, surface, tensors
 from .blowup import NON_FINITE, first_bad_particle
 from .errors import BlowUp
 from .io.frames import frame_path, write_frame
@@ -112,7 +112,7 @@ class Simulation:
         if self._B is None:
             pa = self.particles
             n = pa.n_owned
-            self._B = pa.B[:n] if "B" in pa.arrays else self.workspace.get("correction_matrix", n, (pa.dim, pa.dim))
+            self._B = pa.B[:n] if "B" in pa.arrays else self.workspace.get("correction_matrix", n, (tensors.size(pa.dim),))
             correction_matrix(n, self.start, self.nbr, self.xc, pa.mass, pa.rho, pa.kind, *self.kernel_args, self._B)
         return self._B
 

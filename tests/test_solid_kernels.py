@@ -11,6 +11,7 @@ from mpisph.neighbours import neighbour_lists
 from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
 from mpisph.physics.solid import (correction_matrix, shear_force_tensor, stress_acceleration,
                                  velocity_gradient)
+from mpisph.tensors import packed, unpacked
 
 DP = 0.01
 H = 1.3 * DP
@@ -27,7 +28,8 @@ def block(nx=12, ny=10):
 
 
 def corrections(x, kind, mass, rho, start, nbr):
-    B = np.zeros((len(x), 2, 2))
+    """B of every particle, packed (xx, yy, xy) as the solver stores it."""
+    B = np.zeros((len(x), 3))
     correction_matrix(len(x), start, nbr, x, mass, rho, kind, H, normalisation(KERNEL, H, 2), KERNEL, B)
     return B
 
@@ -43,7 +45,7 @@ def gradients(x, v, mass, rho, kind, B, start, nbr):
 
 def test_correction_matrix_is_identity_inside_and_corrects_edges():
     x, kind, mass, rho, start, nbr = block()
-    B = corrections(x, kind, mass, rho, start, nbr)
+    B = unpacked(corrections(x, kind, mass, rho, start, nbr), 2)
     inner = np.all((x > 3 * DP) & (x < np.array([9, 7]) * DP), axis=1)
     # isotropic, and the identity up to the lattice sum's 2.7 % departure from the integral at h = 1.3 dp
     np.testing.assert_allclose(B[inner], np.broadcast_to(B[inner][0], B[inner].shape), atol=1e-12)
@@ -83,8 +85,8 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
     acc = np.zeros((n, 2))
     # c0 = 0: no Riemann dissipation; p = 0: the pure shear part
     T = np.zeros((n, 2, 2))
-    shear_force_tensor(n, kind, shear, np.zeros(n), B, T)
-    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, False, mass, kind, np.zeros_like(x),
+    shear_force_tensor(n, kind, packed(shear), np.zeros(n), B, T)
+    stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, mass, kind, np.zeros_like(x),
                         0.0, -1.0, *args, np.zeros(2), acc)
     power = np.sum(mass[:, None] * v * acc)
     stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))
@@ -93,7 +95,7 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
 
 
 def test_uncorrected_shear_force_from_the_stress_is_eq_25():
-    """Granular materials pass the stress itself and s = sigma + p I is formed pair by pair:
+    """Granular materials pass the packed stress itself and s = sigma + p I is formed pair by pair:
     the same accelerations as the tensor s_i summed as (s_i + s_j) e_ij W' (Eq. 25), wall
     partners included (they take the state of i), and gravity added once."""
     rng = np.random.default_rng(5)
@@ -109,9 +111,9 @@ def test_uncorrected_shear_force_from_the_stress_is_eq_25():
     normal[:, 1] = 1.0
     args = (mass, kind, normal, 30.0, 40.0, H, normalisation(KERNEL, H, 2), KERNEL, np.array([0.0, -9.81]))
     on_the_fly, from_tensor = np.zeros((n, 2)), np.zeros((n, 2))
-    stress_acceleration(n, start, nbr, x, v, rho, p, stress, True, *args, on_the_fly)
+    stress_acceleration(n, start, nbr, x, v, rho, p, packed(stress), *args, on_the_fly)
     s = stress[:, :2, :2] + p[:, None, None] * np.eye(2)
-    stress_acceleration(n, start, nbr, x, v, rho, p, s, False, *args, from_tensor)
+    stress_acceleration(n, start, nbr, x, v, rho, p, s, *args, from_tensor)
     moving = kind == 0
     assert np.abs(on_the_fly[moving] + [0.0, 9.81]).max() > 1.0
     np.testing.assert_array_equal(on_the_fly[moving], from_tensor[moving])

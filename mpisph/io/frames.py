@@ -8,8 +8,11 @@ so ParaView and VTK's ``vtkHDFReader`` open it directly:
 * ``Vertices``: ``Connectivity`` = 0..N-1, ``Offsets`` = 0..N;
   ``Lines``, ``Polygons`` and ``Strips`` are empty;
 * ``PointData/<name>`` for every field but ``x``: 2-component vectors padded
-  to 3, (3, 3) tensors flattened to 9; the attributes ``mpisph_shape`` and
-  ``mpisph_dtype`` record the original trailing shape and dtype;
+  to 3, symmetric tensors as their 6 components in VTK's order (xx, yy, zz,
+  xy, yz, xz; ParaView reads them as symmetric tensors; format 1 stored
+  (3, 3) stresses flattened to 9, which a restart still reads); the
+  attributes ``mpisph_shape`` and ``mpisph_dtype`` record the original
+  trailing shape and dtype;
 * ``FieldData/time`` and ``FieldData/step``.
 
 The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
@@ -31,7 +34,7 @@ from mpisph.errors import InputError
 FRAME_PREFIX = "frame_"
 FRAME_SUFFIX = ".vtkhdf"
 FORMAT = "mpisph-frame"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2  # 2: symmetric tensors packed (tensors.py)
 VTKHDF_VERSION = (2, 0)
 REQUIRED = ("x", "gid", "kind")
 CELL_GROUPS = ("Vertices", "Lines", "Polygons", "Strips")

@@ -33,20 +33,17 @@ from numba import njit
 from ..kernels import dw
 from ..neighbours import pair_distance
 from ..particles import Field, is_wall
+from ..tensors import SYM3
 from .solid import material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
 
 
-# storage of a symmetric 3 x 3 tensor as 6 numbers: component (a, b) is at SYMMETRIC[a, b]
-SYMMETRIC = np.array([[0, 3, 4], [3, 1, 5], [4, 5, 2]])
-
-
 @njit(cache=True)
 def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0,
                      h, sigma, kernel, rate):
-    """rate_i = the diffusion term of the module docstring (vertical axis = last axis), as the
-    6 components of a symmetric tensor (``SYMMETRIC``).
+    """rate_i = the diffusion term of the module docstring (vertical axis = last axis), packed
+    like the stress (tensors.py).
 
     With f_ij the pair weight, the sum is sigma_i sum f - sum f sigma_j - (sum f dsigma^geo_ij),
     the stresses being symmetric.
@@ -58,7 +55,7 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
         if is_wall(kind[i]):
             continue
         f_sum = geo_sum = 0.0
-        s00 = s01 = s02 = s11 = s12 = s22 = 0.0
+        s0 = s1 = s2 = s3 = s4 = s5 = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             if is_wall(kind[j]):
@@ -67,17 +64,16 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
             f = coef0 * mass[j] / rho[j] * r * dw(r, h, sigma, kernel) / (r * r + 0.01 * h * h)
             f_sum += f
             geo_sum += f * rho0 * g * (xc[i, vert] - xc[j, vert])
-            s00 += f * stress[j, 0, 0]
-            s01 += f * stress[j, 0, 1]
-            s02 += f * stress[j, 0, 2]
-            s11 += f * stress[j, 1, 1]
-            s12 += f * stress[j, 1, 2]
-            s22 += f * stress[j, 2, 2]
-        sums = (s00, s11, s22, s01, s02, s12)
+            s0 += f * stress[j, 0]
+            s1 += f * stress[j, 1]
+            s2 += f * stress[j, 2]
+            s3 += f * stress[j, 3]
+            s4 += f * stress[j, 4]
+            s5 += f * stress[j, 5]
+        sums = (s0, s1, s2, s3, s4, s5)
+        for k in range(6):
+            rate[i, k] = f_sum * stress[i, k] - sums[k]
         for a in range(3):
-            for b in range(a, 3):
-                k = SYMMETRIC[a, b]
-                rate[i, k] = f_sum * stress[i, a, b] - sums[k]
             rate[i, a] -= geo_sum if a == vert else k0 * geo_sum
 
 
@@ -131,7 +127,7 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
         velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
         for a in range(3):
             for b in range(3):
-                sig[a, b] = stress[i, a, b]
+                sig[a, b] = stress[i, SYM3[a, b]]
         i1, sqrt_j2 = _deviator(sig, dev)
         tr_d = L[0, 0] + L[1, 1] + L[2, 2]
         s_d = 0.0
@@ -144,7 +140,7 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
                     w_ac = 0.5 * (L[a, c] - L[c, a])
                     w_bc = 0.5 * (L[b, c] - L[c, b])
                     r += sig[a, c] * w_bc + w_ac * sig[c, b]
-                rate[a, b] = r + diffusion[i, SYMMETRIC[a, b]]
+                rate[a, b] = r + diffusion[i, SYM3[a, b]]
             rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
         gamma_dot = 0.0
         if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:
@@ -159,14 +155,15 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
                 sig[a, b] += dt * rate[a, b]
         ds = return_mapping(sig, alpha_phi, k_c, dev)
         plastic_strain[i] += dt * max(gamma_dot, 0.0) / math.sqrt(3.0) + math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
-        for a in range(3):
-            for b in range(3):
-                stress[i, a, b] = sig[a, b]
+        for a in range(3):  # sig stays symmetric to the bit: every rate term is formed symmetrically
+            for b in range(a, 3):
+                stress[i, SYM3[a, b]] = sig[a, b]
 
 
 def geostatic_stress(x, top, soil, g):
-    """Initial stress at rest under a level surface at height ``top``: sigma_v = -rho0 g (top - y)
-    on the vertical (last) axis, sigma_h = (1 - sin phi) sigma_v on the others (also out of plane in 2D)."""
+    """Initial stress (n, 3, 3) at rest under a level surface at height ``top``: sigma_v =
+    -rho0 g (top - y) on the vertical (last) axis, sigma_h = (1 - sin phi) sigma_v on the others
+    (also out of plane in 2D)."""
     stress = np.zeros((len(x), 3, 3))
     vertical = x.shape[1] - 1
     sv = -soil.rho0 * g * (top - x[:, vertical])

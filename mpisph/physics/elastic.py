@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from ..particles import WALL, WALL_SLIP, Field, is_wall
+from ..tensors import SYM3
 from .solid import velocity_gradient
 
 
@@ -28,16 +29,16 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
         if is_wall(kind[i]):
             continue
         p[i] = c0 * c0 * (rho[i] - rho0)
+        for k in range(6):
+            stress[i, k] = shear[i, k]
         for a in range(3):
-            for b in range(3):
-                stress[i, a, b] = shear[i, a, b]
-            stress[i, a, a] -= p[i]
+            stress[i, a] -= p[i]
 
 
 @njit(cache=True)
 def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, G, dt, shear):
     """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation),
-    with L of Eq. 23 from ``velocity_gradient`` particle by particle."""
+    with L of Eq. 23 from ``velocity_gradient`` particle by particle; both stresses packed."""
     L = np.empty((3, 3))
     rate = np.empty((3, 3))
     for i in range(n):
@@ -52,13 +53,13 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sig
                 for c in range(3):
                     w_ac = 0.5 * (L[a, c] - L[c, a])
                     w_bc = 0.5 * (L[b, c] - L[c, b])
-                    r += shear[i, a, c] * w_bc + w_ac * shear[i, c, b]
+                    r += shear[i, SYM3[a, c]] * w_bc + w_ac * shear[i, SYM3[c, b]]
                 rate[a, b] = r
         for a in range(3):
             rate[a, a] -= 2.0 * G * trace / 3.0
-        for a in range(3):
-            for b in range(3):
-                shear[i, a, b] += dt * rate[a, b]
+        for a in range(3):  # the rate is symmetric to the bit: each term is formed symmetrically
+            for b in range(a, 3):
+                shear[i, SYM3[a, b]] += dt * rate[a, b]
 
 
 class ElasticModel:
@@ -67,7 +68,7 @@ class ElasticModel:
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
     corrected_shear_force = True  # solid.py: conserves kinetic + strain energy
-    fields = (Field("shear_stress", (3, 3), np.float64, "shear (deviatoric) stress [Pa]"),)
+    fields = (Field("shear_stress", (6,), np.float64, "shear (deviatoric) stress, packed (tensors.py) [Pa]"),)
     observable_names = ("strain_energy",)
 
     def __init__(self, material):
@@ -90,5 +91,6 @@ class ElasticModel:
         material = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))
         vol = pa.mass[:n] / pa.rho[:n]
         s = pa.shear_stress[:n]
-        dens = np.sum(s * s, axis=(1, 2)) / (4.0 * m.G) + pa.p[:n] ** 2 / (2.0 * m.K)
+        s_s = np.sum(s[:, :3] ** 2, axis=1) + 2.0 * np.sum(s[:, 3:] ** 2, axis=1)  # off-diagonals twice
+        dens = s_s / (4.0 * m.G) + pa.p[:n] ** 2 / (2.0 * m.K)
         return {"strain_energy": float(np.sum((vol * dens)[material]))}

@@ -2,7 +2,7 @@
 
 Stresses are full 3 x 3 Cauchy tensors, tension positive, also in 2D (plane
 strain: the out-of-plane strain rate is zero, the out-of-plane stress is
-not). In mpisph's sign convention (e_ij from j to i, grad_i W_ij = W' e_ij,
+not); they and B are stored packed (tensors.py). In mpisph's sign convention (e_ij from j to i, grad_i W_ij = W' e_ij,
 W' <= 0, see kernels.py):
 
     velocity gradient   L_i = -sum_j V_j (v_i - v_j) (x) (B_i grad_i W_ij)     (000_ Eq. 23)
@@ -67,6 +67,7 @@ from ..integrators import density_half, drift_half, kick
 from ..kernels import dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
+from ..tensors import component
 from .fluid import continuity
 from .walls import wall_relative_velocity
 
@@ -100,12 +101,15 @@ def _regularised_inverse(A, out):
 
 @njit(cache=True)
 def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
-    """B_i of 000_ Eq. 24 (regularised) for the material particles in [0, n); zero for walls."""
+    """B_i of 000_ Eq. 24 (regularised, packed) for the material particles in [0, n); zero for
+    walls. The inverse of a symmetric A is symmetric to the bit (its cofactors are the same
+    products)."""
     dim = xc.shape[1]
     A = np.empty((dim, dim))
+    inverse = np.empty((dim, dim))
     for i in range(n):
         if is_wall(kind[i]):
-            B[i, :, :] = 0.0
+            B[i, :] = 0.0
             continue
         a00 = a01 = a02 = a11 = a12 = a22 = 0.0
         for s in range(start[i], start[i + 1]):
@@ -121,7 +125,10 @@ def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
         A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a01, a11
         if dim == 3:
             A[0, 2], A[2, 0], A[1, 2], A[2, 1], A[2, 2] = a02, a02, a12, a12, a22
-        _regularised_inverse(A, B[i])
+        _regularised_inverse(A, inverse)
+        for a in range(dim):
+            for b in range(a, dim):
+                B[i, component(dim, a, b)] = inverse[a, b]
 
 
 @njit(cache=True)
@@ -157,45 +164,54 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma
         for b in range(dim):
             acc = 0.0
             for c in range(dim):
-                acc += M[a][c] * B[i, b, c]
+                acc += M[a][c] * B[i, component(dim, b, c)]
             L[a, b] = acc
 
 
 @njit(cache=True)
 def shear_force_tensor(n, kind, stress, p, B, T):
-    """T_i = s_i B_i, the in-plane block, with s = sigma + p I, for the material particles in
-    [0, n), ghosts included: the shear part of the corrected momentum sum (elastic solids)."""
+    """T_i = s_i B_i, the in-plane block (not symmetric), with s = sigma + p I, for the material
+    particles in [0, n), ghosts included: the shear part of the corrected momentum sum (elastic
+    solids)."""
     dim = T.shape[1]
     for i in range(n):
         if is_wall(kind[i]):
             continue
         for a in range(dim):
             for b in range(dim):
-                acc = p[i] * B[i, a, b]
+                acc = p[i] * B[i, component(dim, a, b)]
                 for c in range(dim):
-                    acc += stress[i, a, c] * B[i, c, b]
+                    acc += stress[i, component(3, a, c)] * B[i, component(dim, c, b)]
                 T[i, a, b] = acc
 
 
-@njit(inline="always")
-def _tensor_times(T, k, pk, dim, d0, d1, d2):
-    """(T_k + pk I) (d0, d1, d2) as three scalars, over the in-plane block of T."""
+@njit  # not inlined by numba: its branch on T.ndim is pruned only in a function of its own
+def _tensor_times(T, k, p, dim, d0, d1, d2):
+    """T_k (d0, d1, d2) as three scalars, over the in-plane block: T is T = s B (n, dim, dim),
+    or the packed stress (n, 6), from which s = sigma + p I is formed."""
+    if T.ndim == 2:  # packed sigma (tensors.py order xx, yy, zz, xy, yz, xz)
+        pk = p[k]
+        if dim == 2:
+            return (T[k, 0] + pk) * d0 + T[k, 3] * d1, T[k, 3] * d0 + (T[k, 1] + pk) * d1, 0.0
+        return ((T[k, 0] + pk) * d0 + T[k, 3] * d1 + T[k, 5] * d2,
+                T[k, 3] * d0 + (T[k, 1] + pk) * d1 + T[k, 4] * d2,
+                T[k, 5] * d0 + T[k, 4] * d1 + (T[k, 2] + pk) * d2)
     if dim == 2:
-        return (T[k, 0, 0] + pk) * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + (T[k, 1, 1] + pk) * d1, 0.0
-    return ((T[k, 0, 0] + pk) * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
-            T[k, 1, 0] * d0 + (T[k, 1, 1] + pk) * d1 + T[k, 1, 2] * d2,
-            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + (T[k, 2, 2] + pk) * d2)
+        return T[k, 0, 0] * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + T[k, 1, 1] * d1, 0.0
+    return (T[k, 0, 0] * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
+            T[k, 1, 0] * d0 + T[k, 1, 1] * d1 + T[k, 1, 2] * d2,
+            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + T[k, 2, 2] * d2)
 
 
 @njit(cache=True)
-def stress_acceleration(n, start, nbr, xc, v, rho, p, T, deviatoric, mass, kind, normal,
+def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
                         c0, eta, h, sigma, kernel, gravity, dv_dt):
     """dv/dt of the moving particles (module docstring); eta <= 0 means beta = 1.
 
-    The shear part takes T = s B from ``shear_force_tensor`` (corrected), or with
-    ``deviatoric`` the stress itself, s = sigma + p I being formed on the fly (Eq. 25 as
-    printed: no n x 3 x 3 copy). T_i is the same for every pair of i and multiplies
-    sum_j V_j e_ij W'_ij once; a wall partner takes the state of i.
+    The shear part takes T = s B from ``shear_force_tensor`` (corrected), or the packed
+    stress itself, s = sigma + p I being formed on the fly (Eq. 25 as printed: no copy).
+    T_i is the same for every pair of i and multiplies sum_j V_j e_ij W'_ij once; a wall
+    partner takes the state of i.
     """
     dim = xc.shape[1]
     for i in range(n):
@@ -215,14 +231,14 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, deviatoric, mass, kind,
             beta = 1.0 if eta <= 0.0 else min(eta * max(u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[k] - beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
             f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            t0, t1, t2 = _tensor_times(T, k, p[k] if deviatoric else 0.0, dim, d0, d1, d2)
+            t0, t1, t2 = _tensor_times(T, k, p, dim, d0, d1, d2)
             a0 += f * (t0 - pressure * d0)
             a1 += f * (t1 - pressure * d1)
             a2 += f * (t2 - pressure * d2)
             g0 += f * d0
             g1 += f * d1
             g2 += f * d2
-        t0, t1, t2 = _tensor_times(T, i, p[i] if deviatoric else 0.0, dim, g0, g1, g2)
+        t0, t1, t2 = _tensor_times(T, i, p, dim, g0, g1, g2)
         dv_dt[i, 0] = gravity[0] + (a0 + t0) / rho[i]
         dv_dt[i, 1] = gravity[1] + (a1 + t1) / rho[i]
         if dim == 3:
@@ -234,7 +250,7 @@ def material_pressure(n, kind, stress, p):
     """p = -tr(sigma)/3 for the material particles."""
     for i in range(n):
         if not is_wall(kind[i]):
-            p[i] = -(stress[i, 0, 0] + stress[i, 1, 1] + stress[i, 2, 2]) / 3.0
+            p[i] = -(stress[i, 0] + stress[i, 1] + stress[i, 2]) / 3.0
 
 
 @njit(cache=True)
@@ -242,11 +258,11 @@ def output_invariants(n, stress, v, von_mises, speed):
     """von Mises stress sqrt(3/2 s:s) and speed |v| of the particles in [0, n), for frames."""
     dim = v.shape[1]
     for i in range(n):
-        mean = (stress[i, 0, 0] + stress[i, 1, 1] + stress[i, 2, 2]) / 3.0
+        mean = (stress[i, 0] + stress[i, 1] + stress[i, 2]) / 3.0
         ss = 0.0
         for a in range(3):
             for b in range(3):
-                s_ab = stress[i, a, b] - (mean if a == b else 0.0)
+                s_ab = stress[i, component(3, a, b)] - (mean if a == b else 0.0)
                 ss += s_ab * s_ab
         von_mises[i] = np.sqrt(1.5 * ss)
         vv = 0.0
@@ -274,8 +290,8 @@ class SolidScheme:
     base_fields = (
         Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
         Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
-        Field("stress", (3, 3), np.float64, "Cauchy stress, tension positive [Pa]"),
-        Field("B", ("dim", "dim"), np.float64, "kernel-gradient correction matrix (000_ Eq. 24)"),
+        Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]"),
+        Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
     )
 
     def __init__(self, model, gravity, u_ref):
@@ -313,8 +329,8 @@ class SolidScheme:
             shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, T)
         else:
             T = pa.stress
-        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, not self.model.corrected_shear_force,
-                            pa.mass, pa.kind, pa.normal, self.m.c0, self.model.eta, *k, self.gravity, pa.dv_dt)
+        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind, pa.normal,
+                            self.m.c0, self.model.eta, *k, self.gravity, pa.dv_dt)
         kick(n, pa.kind, pa.v, pa.dv_dt, dt)
         s.halo.refresh(pa, ["v"])
         # 4. second half: positions (000_ Eq. 41), density rate, stress from the velocity
@@ -328,15 +344,11 @@ class SolidScheme:
 
     @property
     def observable_names(self):
-        return tuple(self.model.observable_names) + ("potential_energy",)
+        return tuple(self.model.observable_names)
 
     def observables(self, pa, n):
-        """Extra sums for diagnostics.csv over the owned particles [0, n): the model's energies
-        and the potential energy -sum m g.x of the moving particles."""
-        moving = pa.kind[:n] == MOVING
-        out = self.model.energies(pa, n) if hasattr(self.model, "energies") else {}
-        out["potential_energy"] = float(-np.sum(pa.mass[:n][moving] * (pa.x[:n][moving] @ self.gravity)))
-        return out
+        """Extra sums for diagnostics.csv over the owned particles [0, n): the model's energies."""
+        return self.model.energies(pa, n) if hasattr(self.model, "energies") else {}
 
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles: von Mises, vertical stress, speed."""
@@ -344,4 +356,4 @@ class SolidScheme:
         speed = np.empty(n)
         output_invariants(n, pa.stress, pa.v, von_mises, speed)
         vertical = pa.dim - 1
-        return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical, vertical].copy(), "speed": speed}
+        return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical].copy(), "speed": speed}

@@ -41,6 +41,7 @@ from .. import surface
 from ..kernels import dw
 from ..neighbours import pair_offset
 from ..particles import MOVING
+from ..tensors import component, size
 
 LIMITER_C = 1000.0
 LIMITER_THRESHOLD = 5e-4
@@ -95,14 +96,14 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
         g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel)
-        if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35)
-            n0 = B[i, 0, 0] * g0 + B[i, 0, 1] * g1
-            n1 = B[i, 1, 0] * g0 + B[i, 1, 1] * g1
+        if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35; B packed)
+            n0 = B[i, component(dim, 0, 0)] * g0 + B[i, component(dim, 0, 1)] * g1
+            n1 = B[i, component(dim, 1, 0)] * g0 + B[i, component(dim, 1, 1)] * g1
             n2 = 0.0
             if dim == 3:
-                n0 += B[i, 0, 2] * g2
-                n1 += B[i, 1, 2] * g2
-                n2 = B[i, 2, 0] * g0 + B[i, 2, 1] * g1 + B[i, 2, 2] * g2
+                n0 += B[i, component(3, 0, 2)] * g2
+                n1 += B[i, component(3, 1, 2)] * g2
+                n2 = B[i, component(3, 2, 0)] * g0 + B[i, component(3, 2, 1)] * g1 + B[i, component(3, 2, 2)] * g2
             norm2 = n0 * n0 + n1 * n1 + n2 * n2
             if norm2 == 0.0:
                 continue
@@ -144,7 +145,7 @@ class TransportVelocity:
     def apply(self, s):
         pa = s.particles
         n = pa.n_owned
-        B = s.correction_matrices() if self.unified else np.zeros((n, pa.dim, pa.dim))
+        B = s.correction_matrices() if self.unified else np.empty((0, size(pa.dim)))  # not read
         consistency_shift(n, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
                           B, self.unified, *s.kernel_args)
 

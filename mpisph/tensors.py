@@ -1,0 +1,48 @@
+"""Symmetric tensors stored as their independent components.
+
+A symmetric 3 x 3 tensor (the Cauchy stress, the shear stress) takes 6
+numbers per particle instead of 9, in VTK's order xx, yy, zz, xy, yz, xz, so
+that ParaView reads the 6-component point array of a frame as a symmetric
+tensor. A symmetric dim x dim tensor (the correction matrix B of 000_ Eq. 24)
+takes 3 numbers (xx, yy, xy) in 2D and the same 6 as above in 3D.
+
+Component (a, b) of the tensor stored in row ``t[i]`` is
+``t[i, component(dim, a, b)]``; hot pair loops spell the indices out.
+"""
+
+import numpy as np
+from numba import njit
+
+# packed index of component (a, b) of a symmetric 3 x 3 tensor (VTK order)
+SYM3 = np.array([[0, 3, 5], [3, 1, 4], [5, 4, 2]])
+# the same for a symmetric 2 x 2 tensor (xx, yy, xy)
+SYM2 = np.array([[0, 2], [2, 1]])
+
+
+def size(dim):
+    """Number of independent components of a symmetric dim x dim tensor."""
+    return dim * (dim + 1) // 2
+
+
+@njit(inline="always")
+def component(dim, a, b):
+    """Packed index of component (a, b) of a symmetric dim x dim tensor."""
+    return SYM2[a, b] if dim == 2 else SYM3[a, b]
+
+
+def packed(full):
+    """(n, d, d) symmetric tensors as (n, d (d + 1) / 2) packed rows (the upper triangle)."""
+    full = np.asarray(full, dtype=np.float64)
+    dim = full.shape[-1]
+    table = SYM2 if dim == 2 else SYM3
+    out = np.empty(full.shape[:-2] + (size(dim),))
+    for a in range(dim):
+        for b in range(a, dim):
+            out[..., table[a, b]] = full[..., a, b]
+    return out
+
+
+def unpacked(rows, dim):
+    """(n, d (d + 1) / 2) packed rows as (n, d, d) symmetric tensors."""
+    table = SYM2 if dim == 2 else SYM3
+    return np.asarray(rows)[..., table]
