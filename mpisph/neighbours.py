@@ -16,15 +16,34 @@ import numpy as np
 from numba import njit
 
 from .particles import is_wall
+from .workspace import Workspace
 
 # Search cells are radius / CELLS_PER_RADIUS wide: with 2, the 5 x 5 (x 5) block of cells around a
 # particle covers 30 % (2D) to 42 % (3D) fewer candidates than 3 x 3 (x 3) cells of width radius.
 CELLS_PER_RADIUS = 2
 
 
-def neighbour_lists(x, gid, kind, n_owned, radius, origin):
-    """Neighbours within ``radius`` (strictly) of each owned material particle."""
-    return _build(x, gid, kind, n_owned, float(radius), np.asarray(origin, dtype=np.float64))
+PAIRS_PER_PARTICLE = {2: 24, 3: 80}  # first guess of the list length per owned particle
+
+
+def neighbour_lists(x, gid, kind, n_owned, radius, origin, workspace=None):
+    """(start, index): neighbours within ``radius`` (strictly) of each owned material particle.
+
+    The search's transients (cell ids, the particles sorted by cell and their
+    positions) are ``workspace.scratch`` when a Workspace is given (the solver's:
+    the step then allocates only the lists).
+    """
+    n, dim = x.shape
+    radius = float(radius)
+    origin = np.asarray(origin, dtype=np.float64)
+    lo, ext = _grid(x, radius / CELLS_PER_RADIUS, origin)
+    ncell = int(ext[0] * ext[1] * ext[2])  # < 2**31: int32 cell ids and counts
+    scratch = (workspace or Workspace()).scratch(((n,), np.int32), ((ncell + 1,), np.int32), ((ncell,), np.int32),
+                                                 ((n,), np.int32), ((n, 3), np.float64))
+    start = np.empty(n_owned + 1, np.int64)
+    index = np.empty(max(16, PAIRS_PER_PARTICLE[dim] * n_owned), np.int32)  # 4 bytes per pair
+    index, count = _search(x, gid, kind, n_owned, radius, origin, lo, ext, *scratch, start, index)
+    return start, index[:count]
 
 
 def cell_order(x, n, radius, origin):
@@ -77,11 +96,10 @@ def _cells(x, radius, origin):
 
 
 @njit(cache=True)
-def _build(x, gid, kind, n_owned, radius, origin):
+def _grid(x, width, origin):
+    """(lo, ext): the first cell and the number of cells along each axis of the grid that spans
+    the particles' cells (lo = 0, ext = 1 on the missing third axis in 2D)."""
     n, dim = x.shape
-    width = radius / CELLS_PER_RADIUS
-    # the cell grid spans the particles' cells; cell coordinates are recomputed where needed
-    # rather than stored (the search's transients are what sets a 3D run's peak memory)
     lo = np.zeros(3, np.int64)
     ext = np.ones(3, np.int64)
     if n > 0:
@@ -95,8 +113,18 @@ def _build(x, gid, kind, n_owned, radius, origin):
                 hi[a] = max(hi[a], ca)
         for a in range(dim):
             ext[a] = hi[a] - lo[a] + 1
-    ncell = ext[0] * ext[1] * ext[2]
-    cell_id = np.empty(n, np.int32)  # ncell < 2**31: cell_start below has ncell + 1 entries
+    return lo, ext
+
+
+@njit(cache=True)
+def _search(x, gid, kind, n_owned, radius, origin, lo, ext, cell_id, cell_start, fill, sorted_idx, xs,
+            start, index):
+    """Fill the lists of ``neighbour_lists`` into ``start`` and ``index`` (grown if too short);
+    the other arrays are scratch of the right sizes. Returns (index, pair count)."""
+    n, dim = x.shape
+    width = radius / CELLS_PER_RADIUS
+    ncell = len(fill)
+    # cell coordinates are recomputed where needed rather than stored
     for i in range(n):
         cell_id[i] = ((_cell(x, i, 0, width, origin) - lo[0]) + ext[0] * ((_cell(x, i, 1, width, origin) - lo[1])
                       + ext[1] * (_cell(x, i, 2, width, origin) - lo[2])))
@@ -104,13 +132,12 @@ def _build(x, gid, kind, n_owned, radius, origin):
     # counting sort by cell, then by gid inside each cell (insertion sort: a cell holds a
     # particle or two); positions copied in that order so that the candidates of a row of
     # cells are contiguous in memory
-    cell_start = np.zeros(ncell + 1, np.int32)  # a rank holds fewer than 2**31 particles
+    cell_start[:] = 0
     for i in range(n):
         cell_start[cell_id[i] + 1] += 1
     for k in range(ncell):
         cell_start[k + 1] += cell_start[k]
-    fill = cell_start[:-1].copy()
-    sorted_idx = np.empty(n, np.int32)
+    fill[:] = cell_start[:-1]
     for i in range(n):
         sorted_idx[fill[cell_id[i]]] = i
         fill[cell_id[i]] += 1
@@ -122,7 +149,6 @@ def _build(x, gid, kind, n_owned, radius, origin):
                 sorted_idx[t] = sorted_idx[t - 1]
                 t -= 1
             sorted_idx[t] = i
-    xs = np.empty((n, 3))
     for s in range(n):
         for a in range(3):
             xs[s, a] = x[sorted_idx[s], a] if a < dim else 0.0
@@ -131,8 +157,6 @@ def _build(x, gid, kind, n_owned, radius, origin):
     reach = CELLS_PER_RADIUS
     dz_lo = -reach if dim == 3 else 0
     dz_hi = reach if dim == 3 else 0
-    start = np.zeros(n_owned + 1, np.int64)
-    index = np.empty(max(16, 24 * n_owned if dim == 2 else 80 * n_owned), np.int32)  # 4 bytes per pair
     count = 0
     for i in range(n_owned):
         start[i] = count
@@ -170,7 +194,7 @@ def _build(x, gid, kind, n_owned, radius, origin):
                     index[count] = j
                     count += (d0 * d0 + d1 * d1 + d2 * d2 < r2max) & (j != i)
     start[n_owned] = count
-    return start, index[:count]
+    return index, count
 
 
 @njit(cache=True)

@@ -90,6 +90,7 @@ class Simulation:
         with self.timer("exchange"):
             self._wrap_periodic()
             work = particle_work(pa, self.start)  # the rows of the last configuration, before they move
+            self.start = self.nbr = self._B = None  # the lists are freed before migration and search
             first = self.advection_steps == 0  # cut once on counts, once on the pairs of the first lists
             if first or self.decomp.imbalance(work.sum()) > self.params["rebalance_threshold"]:
                 self.decomp.balance(pa.owned("x")[:, self.decomp.axis], work)
@@ -98,10 +99,10 @@ class Simulation:
                 pa.keep_owned(cell_order(pa.x, pa.n_owned, self.support, self.case.domain[0]), 0)
             self.halo.build(pa)
         with self.timer("neighbours"):
-            self.start = self.nbr = self.xc = self._B = None  # freed before the new lists are built
-            self.xc = pa.x.copy()
-            self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned,
-                                                   self.support, self.case.domain[0])
+            self.xc = self.workspace.get("configuration", pa.n, (pa.dim,))  # rewritten in place
+            self.xc[:] = pa.x
+            self.start, self.nbr = neighbour_lists(self.xc, pa.gid, pa.kind, pa.n_owned, self.support,
+                                                   self.case.domain[0], self.workspace)
         if "surface" in pa.arrays:
             with self.timer("physics"):
                 surface.classify(self)

@@ -195,7 +195,7 @@ class DruckerPragerModel:
     def update_stress(self, s, gradient, dt):
         pa, m = s.particles, self.material
         n = pa.n_owned
-        diffusion = s.workspace.get("stress_diffusion", n, (6,))
+        diffusion, = s.workspace.scratch(((n, 6), np.float64))  # for this update only
         stress_diffusion(n, s.start, s.nbr, s.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
                          m.k0, m.c0, *s.kernel_args, diffusion)
         drucker_prager_update(n, *gradient, diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
