@@ -9,8 +9,8 @@ Two kinds: ``get`` names an array that lives from one use to the next (the
 frozen positions of a configuration, the correction matrices); ``scratch``
 hands out arrays that live for one phase only, all carved from one shared
 buffer, so that phases that never overlap (the cell search's sorted copies,
-the stress-diffusion rate) take the memory of the largest of them, not of
-their sum.
+the accelerations from the momentum sum to the kick, the stress-diffusion
+rate) take the memory of the largest of them, not of their sum.
 """
 
 import numpy as np

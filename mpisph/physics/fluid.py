@@ -189,7 +189,6 @@ class FluidScheme:
 
     fields = (
         Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
-        Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
         Field("prior", ("dim",), np.float64, "gravity + viscous acceleration [m/s^2]"),
     )
 
@@ -226,9 +225,10 @@ class FluidScheme:
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, True)
         equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
         s.halo.refresh(pa, ["rho", "p"])
+        dv_dt, = s.workspace.scratch(((n, pa.dim), np.float64))  # the acceleration lives until the kick
         pressure_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind,
-                              pa.normal, self.gravity, self.m.c0, *k, pa.prior, pa.dv_dt)
-        kick(n, pa.kind, pa.v, pa.dv_dt, dt)
+                              pa.normal, self.gravity, self.m.c0, *k, pa.prior, dv_dt)
+        kick(n, pa.kind, pa.v, dv_dt, dt)
         s.halo.refresh(pa, ["v"])
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
         continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,

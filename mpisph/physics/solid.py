@@ -289,7 +289,6 @@ class SolidScheme:
 
     base_fields = (
         Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
-        Field("dv_dt", ("dim",), np.float64, "acceleration [m/s^2]"),
         Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]"),
         Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
     )
@@ -329,9 +328,10 @@ class SolidScheme:
             shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, T)
         else:
             T = pa.stress
+        dv_dt, = s.workspace.scratch(((n, pa.dim), np.float64))  # the acceleration lives until the kick
         stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind, pa.normal,
-                            self.m.c0, self.model.eta, *k, self.gravity, pa.dv_dt)
-        kick(n, pa.kind, pa.v, pa.dv_dt, dt)
+                            self.m.c0, self.model.eta, *k, self.gravity, dv_dt)
+        kick(n, pa.kind, pa.v, dv_dt, dt)
         s.halo.refresh(pa, ["v"])
         # 4. second half: positions (000_ Eq. 41), density rate, stress from the velocity
         #    gradient (Eq. 23, particle by particle inside the model's update), density
