@@ -2,8 +2,9 @@
 
 Every run records time, step, dt, particle count, mass, kinetic energy,
 momentum, angular momentum and potential energy in gravity; the scheme adds
-its own sums (the strain energy of elastic solids) and every probe of the case (a particle given
-by its global id) its displacement from the initial position.
+its own sums (the strain energy of elastic solids) and every probe of the case
+(a particle given by its global id) its displacement from the initial
+position.
 """
 
 import numpy as np

@@ -30,6 +30,14 @@ def component(dim, a, b):
     return SYM2[a, b] if dim == 2 else SYM3[a, b]
 
 
+@njit(inline="always")
+def unpack_row(t, i, out):
+    """out = the 3 x 3 tensor stored packed in row ``t[i]``."""
+    for a in range(3):
+        for b in range(3):
+            out[a, b] = t[i, SYM3[a, b]]
+
+
 def packed(full):
     """(n, d, d) symmetric tensors as (n, d (d + 1) / 2) packed rows (the upper triangle)."""
     full = np.asarray(full, dtype=np.float64)

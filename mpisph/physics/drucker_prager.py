@@ -33,8 +33,8 @@ from numba import njit
 from ..kernels import dw
 from ..neighbours import pair_distance
 from ..particles import Field, is_wall
-from ..tensors import SYM3
-from .solid import material_pressure, velocity_gradient
+from ..tensors import SYM3, unpack_row
+from .solid import jaumann_rate, material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
 
@@ -125,9 +125,7 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
         if is_wall(kind[i]):
             continue
         velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
-        for a in range(3):
-            for b in range(3):
-                sig[a, b] = stress[i, SYM3[a, b]]
+        unpack_row(stress, i, sig)
         i1, sqrt_j2 = _deviator(sig, dev)
         tr_d = L[0, 0] + L[1, 1] + L[2, 2]
         s_d = 0.0
@@ -135,12 +133,10 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
             for b in range(3):
                 d_ab = 0.5 * (L[a, b] + L[b, a])
                 s_d += dev[a, b] * d_ab
-                r = 2.0 * G * d_ab
-                for c in range(3):
-                    w_ac = 0.5 * (L[a, c] - L[c, a])
-                    w_bc = 0.5 * (L[b, c] - L[c, b])
-                    r += sig[a, c] * w_bc + w_ac * sig[c, b]
-                rate[a, b] = r + diffusion[i, SYM3[a, b]]
+        jaumann_rate(L, sig, G, rate)
+        for a in range(3):
+            for b in range(3):
+                rate[a, b] += diffusion[i, SYM3[a, b]]
             rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
         gamma_dot = 0.0
         if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:

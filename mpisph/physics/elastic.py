@@ -18,8 +18,8 @@ import numpy as np
 from numba import njit
 
 from ..particles import WALL, WALL_SLIP, Field, is_wall
-from ..tensors import SYM3
-from .solid import velocity_gradient
+from ..tensors import SYM3, unpack_row
+from .solid import jaumann_rate, velocity_gradient
 
 
 @njit(cache=True)
@@ -40,21 +40,15 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sig
     """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation),
     with L of Eq. 23 from ``velocity_gradient`` particle by particle; both stresses packed."""
     L = np.empty((3, 3))
+    s_i = np.empty((3, 3))
     rate = np.empty((3, 3))
     for i in range(n):
         if is_wall(kind[i]):
             continue
         velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
         trace = L[0, 0] + L[1, 1] + L[2, 2]
-        for a in range(3):
-            for b in range(3):
-                d_ab = 0.5 * (L[a, b] + L[b, a])
-                r = 2.0 * G * d_ab
-                for c in range(3):
-                    w_ac = 0.5 * (L[a, c] - L[c, a])
-                    w_bc = 0.5 * (L[b, c] - L[c, b])
-                    r += shear[i, SYM3[a, c]] * w_bc + w_ac * shear[i, SYM3[c, b]]
-                rate[a, b] = r
+        unpack_row(shear, i, s_i)
+        jaumann_rate(L, s_i, G, rate)
         for a in range(3):
             rate[a, a] -= 2.0 * G * trace / 3.0
         for a in range(3):  # the rate is symmetric to the bit: each term is formed symmetrically

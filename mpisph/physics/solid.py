@@ -2,8 +2,8 @@
 
 Stresses are full 3 x 3 Cauchy tensors, tension positive, also in 2D (plane
 strain: the out-of-plane strain rate is zero, the out-of-plane stress is
-not); they and B are stored packed (tensors.py). In mpisph's sign convention (e_ij from j to i, grad_i W_ij = W' e_ij,
-W' <= 0, see kernels.py):
+not); they and B are stored packed (tensors.py). In mpisph's sign convention
+(e_ij from j to i, grad_i W_ij = W' e_ij, W' <= 0, see kernels.py):
 
     velocity gradient   L_i = -sum_j V_j (v_i - v_j) (x) (B_i grad_i W_ij)     (000_ Eq. 23)
     correction matrix   B_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1              (000_ Eq. 24)
@@ -166,6 +166,22 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma
             for c in range(dim):
                 acc += M[a][c] * B[i, component(dim, b, c)]
             L[a, b] = acc
+
+
+@njit(cache=True)
+def jaumann_rate(L, sig, G, rate):
+    """rate = 2 G D + sig W^T + W sig, D and W the symmetric and skew parts of the 3 x 3 L
+    (000_ Eqs. 8 and 10 without their volumetric terms, which each material adds). Each term is
+    formed symmetrically, so the rate of a symmetric sig is symmetric to the bit."""
+    for a in range(3):
+        for b in range(3):
+            d_ab = 0.5 * (L[a, b] + L[b, a])
+            r = 2.0 * G * d_ab
+            for c in range(3):
+                w_ac = 0.5 * (L[a, c] - L[c, a])
+                w_bc = 0.5 * (L[b, c] - L[c, b])
+                r += sig[a, c] * w_bc + w_ac * sig[c, b]
+            rate[a, b] = r
 
 
 @njit(cache=True)
