@@ -4,7 +4,7 @@ import re
 import tempfile
 from dataclasses import dataclass
 
-from mpisph.launch import mpirun_mpisph
+from mpisph.launch import ROOT, mpirun_mpisph
 
 
 @dataclass
@@ -19,10 +19,11 @@ class Run:
     command: str
 
 
-def run_case(case, ranks, args):
-    """Run a case on ``ranks`` ranks with extra command-line ``args``; returns a ``Run``."""
+def run_case(case, ranks, args, root=ROOT):
+    """Run a case on ``ranks`` ranks with extra command-line ``args`` (with the code of the tree
+    ``root``, by default this one); returns a ``Run``."""
     with tempfile.TemporaryDirectory() as out:
-        r = mpirun_mpisph([case, *map(str, args), "--out", out], ranks=ranks)
+        r = mpirun_mpisph([case, *map(str, args), "--out", out], ranks=ranks, root=root)
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(map(str, args))}"
     if r.returncode != 0:
         raise SystemExit(f"benchmark run failed: {shown}\n{r.stderr}")

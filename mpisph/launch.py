@@ -20,8 +20,9 @@ MPI_ENV = {
 }
 
 
-def mpirun_mpisph(args, ranks=1, timeout=None):
-    """``mpirun -n ranks python -m mpisph args`` from the repository root.
+def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT):
+    """``mpirun -n ranks python -m mpisph args`` from the repository root (or from the tree
+    ``root``, another checkout of mpisph, whose code then runs).
 
     Returns the CompletedProcess (stdout and stderr captured as text); a run
     still going after ``timeout`` seconds is killed (subprocess.TimeoutExpired),
@@ -29,5 +30,5 @@ def mpirun_mpisph(args, ranks=1, timeout=None):
     """
     cmd = ["mpirun", "-n", str(ranks), sys.executable, "-m", "mpisph", *map(str, args)]
     env = dict(MPI_ENV, **os.environ)
-    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=ROOT)
+    env["PYTHONPATH"] = str(root) + os.pathsep + env.get("PYTHONPATH", "")
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)
