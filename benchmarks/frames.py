@@ -32,16 +32,17 @@ def worker(dp, out):
     from mpi4py import MPI
 
     from mpisph import case as cases
-    from mpisph.initial import make_scheme, particles_from_case
+    from mpisph.initial import particles_from_case
+    from mpisph.parts import make_parts
     from mpisph.solver import Simulation
     comm = MPI.COMM_WORLD
     module = cases.load_case_module("cube_failure_3d")
     values = cases.resolve_params(module, {"dp": str(dp)})
     values["case"] = "cube_failure_3d"
     case = cases.build_case(module, values)
-    scheme = make_scheme(case, values)
-    pa = particles_from_case(comm, case, scheme)
-    sim = Simulation(comm, case, values, pa, scheme, out_dir=out, diagnostics=None, progress=None)
+    parts = make_parts(case, values)
+    pa = particles_from_case(comm, case, parts)
+    sim = Simulation(comm, case, values, pa, parts, out_dir=out, diagnostics=None, progress=None)
     sim.frame_index = comm.size  # one file per rank count
     n_total = comm.allreduce(pa.n_owned)
     comm.Barrier()

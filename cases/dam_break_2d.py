@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import Body, Case, Fluid, Param, Wall
-from mpisph.geometry import box, box_walls
+from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
     "L": Param(1.0, "m", "width of the water column (its height is 2L)", positive=True),
@@ -23,7 +23,7 @@ def setup(p):
     water = box((0.0, 0.0), (p.L, H), p.dp, "the water column")
     pressure = p.rho0 * p.g * (H - water[:, 1])
     u = np.sqrt(2 * p.g * H)
-    layers = int(np.ceil(2 * p.h_factor))
+    layers = support_layers(p.h_factor)
     wall_x, wall_n = box_walls((0.0, 0.0), (W, 1.5 * H), p.dp, layers, open_sides=("+y",))
     margin = layers * p.dp
     return Case(
@@ -31,6 +31,7 @@ def setup(p):
         domain=((-margin, -margin), (W + margin, 1.5 * H)),
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
+        scheme="riemann_fluid",
         bodies=[Body("water", water, pressure=pressure)],
         walls=[Wall("tank", wall_x, wall_n, slip=p.wall == "free_slip")],
         gravity=(0.0, -p.g),

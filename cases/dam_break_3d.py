@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import Body, Case, Fluid, Param, Wall
-from mpisph.geometry import box, box_walls
+from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
     "L": Param(1.0, "m", "length and depth of the water column (its height is 2L)", positive=True),
@@ -22,7 +22,7 @@ def setup(p):
     water = box((0.0, 0.0, 0.0), (p.L, p.L, H), p.dp, "the water column")
     pressure = p.rho0 * p.g * (H - water[:, 2])
     u = np.sqrt(2 * p.g * H)
-    layers = int(np.ceil(2 * p.h_factor))
+    layers = support_layers(p.h_factor)
     wall_x, wall_n = box_walls((0.0, 0.0, 0.0), (W, p.L, 1.5 * H), p.dp, layers, open_sides=("+z",))
     margin = layers * p.dp
     return Case(
@@ -30,6 +30,7 @@ def setup(p):
         domain=((-margin, -margin, -margin), (W + margin, p.L + margin, 1.5 * H)),
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
+        scheme="riemann_fluid",
         bodies=[Body("water", water, pressure=pressure)],
         walls=[Wall("tank", wall_x, wall_n)],
         gravity=(0.0, 0.0, -p.g),

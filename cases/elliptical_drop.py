@@ -29,6 +29,7 @@ def setup(p):
         domain=((-box, -box), (box, box)),
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=p.c0),
+        scheme="riemann_fluid",
         bodies=[Body("drop", x, velocity, pressure)],
         density_reinit=p.density_reinit,
         u_ref=p.A0 * p.radius,

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import Body, Case, Fluid, Param, Wall
-from mpisph.geometry import box, box_walls
+from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
     "width": Param(1.0, "m", "tank width", positive=True),
@@ -19,7 +19,7 @@ PARAMS = {
 def setup(p):
     water = box((0.0, 0.0), (p.width, p.depth), p.dp, "the water")
     u = np.sqrt(2 * p.g * p.depth)
-    layers = int(np.ceil(2 * p.h_factor))
+    layers = support_layers(p.h_factor)
     wall_x, wall_n = box_walls((0.0, 0.0), (p.width, 2 * p.depth), p.dp, layers, open_sides=("+y",))
     margin = layers * p.dp
     return Case(
@@ -27,6 +27,7 @@ def setup(p):
         domain=((-margin, -margin), (p.width + margin, 2 * p.depth)),
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
+        scheme="riemann_fluid",
         bodies=[Body("water", water, pressure=p.rho0 * p.g * (p.depth - water[:, 1]))],
         walls=[Wall("tank", wall_x, wall_n)],
         gravity=(0.0, -p.g),

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import Body, Case, Fluid, Param, Wall
-from mpisph.geometry import box, box_walls
+from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
     "nx": Param(50, "-", "particles along each side", positive=True),
@@ -21,7 +21,7 @@ PARAMS = {
 def setup(p):
     dp = 1.0 / p.nx
     fluid = box((0.0, 0.0), (1.0, 1.0), dp, "the cavity")
-    layers = int(np.ceil(2 * p.h_factor))
+    layers = support_layers(p.h_factor)
     wall_x, wall_n = box_walls((0.0, 0.0), (1.0, 1.0), dp, layers)
     lid = wall_x[:, 1] > 1.0
     wall_v = np.zeros_like(wall_x)
@@ -32,9 +32,10 @@ def setup(p):
         domain=((-margin, -margin), (1.0 + margin, 1.0 + margin)),
         dp=dp,
         material=Fluid(rho0=p.rho0, c0=p.c0, viscosity=p.rho0 * p.U / p.Re),
+        scheme="riemann_fluid",
         bodies=[Body("fluid", fluid)],
         walls=[Wall("cavity", wall_x, wall_n, velocity=wall_v)],
         density_reinit="inner",
-        stabiliser=p.stabiliser,
+        stabilisers=p.stabiliser,
         u_ref=p.U,
     )

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import SOLID_PARAMS, Body, Case, ElasticSolid, Param
-from mpisph.geometry import box
+from mpisph.geometry import box, support_layers
 
 KL = 1.875  # first root of cos(kL) cosh(kL) = -1
 
@@ -35,7 +35,7 @@ def setup(p):
     # the beam continues into a clamp that also covers it above and below, so the
     # particles at the root see full, fixed support; one kernel support of layers is
     # enough, as clamped particles farther away never reach the free beam.
-    grip = int(np.ceil(2 * p.h_factor)) * dp
+    grip = support_layers(p.h_factor) * dp
     half = p.H / 2
     x = np.concatenate([
         box((-grip, -half), (p.L, half), dp, "the beam"),
@@ -52,7 +52,8 @@ def setup(p):
         domain=((-grip - p.L, -p.L), (2 * p.L, p.L)),
         dp=dp,
         material=material,
+        scheme="riemann_elastic",
         bodies=[Body("beam", x, velocity=velocity, clamped=~free)],
-        stabiliser=p.stabiliser,
+        stabilisers=p.stabiliser,
         probes={"tip": tip},
     )

@@ -45,6 +45,7 @@ def setup(p):
         domain=((-extent, -extent), (extent, extent)),
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=p.c0_factor * u),
+        scheme="riemann_fluid",
         bodies=[Body("patch", x, velocity, pressure)],
         density_reinit=p.density_reinit,
         u_ref=u,

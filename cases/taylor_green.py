@@ -40,9 +40,10 @@ def setup(p):
         domain=((0.0, 0.0), (1.0, 1.0)),
         dp=dp,
         material=Fluid(rho0=p.rho0, c0=p.c0, viscosity=p.rho0 * p.U / p.Re),
+        scheme="riemann_fluid",
         bodies=[Body("fluid", x, velocity, pressure)],
         periodic=(True, True),
         density_reinit=p.density_reinit,
-        stabiliser=p.stabiliser,
+        stabilisers=p.stabiliser,
         u_ref=p.U,
     )

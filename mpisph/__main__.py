@@ -62,9 +62,13 @@ def cmd_list():
 
 
 def cmd_info(name):
-    from .case import all_params, describe, load_case_module
+    from .case import all_params, build_case, describe, load_case_module, resolve_params
     module = load_case_module(name)
     print(f"{name}: {describe(module)}")
+    case = build_case(module, resolve_params(module, {}))
+    forces = ", ".join(type(f).__name__ for f in case.forces)
+    print(f"scheme {case.scheme}, integrator {case.integrator}, "
+          f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
     print()
     params = all_params(module)
     width = max(map(len, params))
@@ -115,10 +119,11 @@ def _prepare_out_dir(comm, path):
 
 def run(args, comm):
     from . import case as cases
-    from .initial import make_scheme, particles_from_case, particles_from_frame
+    from .initial import particles_from_case, particles_from_frame
     from .io.diagnostics import Diagnostics
     from .io.frames import check_frame, read_frame
     from .observables import observable_names
+    from .parts import make_parts
     from .progress import Progress
     from .solver import Simulation
 
@@ -136,20 +141,20 @@ def run(args, comm):
         values = cases.resolve_params(module, overrides)
     values["case"] = args.case
     case = cases.build_case(module, values)
-    scheme = make_scheme(case, values)
-    case.validate(2.0 * values["h_factor"] * case.dp)
+    parts = make_parts(case, values)
+    case.validate(parts.kernel.support)
     if frame is None:
-        particles, t, step = particles_from_case(comm, case, scheme), 0.0, 0
+        particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
     else:
-        particles, t, step = particles_from_frame(comm, frame, scheme, case.stabiliser), frame["t"], frame["step"]
+        particles, t, step = particles_from_frame(comm, frame, parts), frame["t"], frame["step"]
     case.forget_particles()
     restarted, frame = frame is not None, None  # the global arrays of the frame are not kept either
     out_dir = args.out or os.path.join("runs", args.case)
     progress = Progress(comm, quiet=args.quiet)
-    sim = Simulation(comm, case, values, particles, scheme, t=t, step=step, out_dir=out_dir,
+    sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, scheme, case.probes), append=restarted,
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes), append=restarted,
                                   restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step

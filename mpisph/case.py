@@ -17,7 +17,7 @@ import numpy as np
 from .errors import InputError
 from .kernels import KERNELS
 from .materials import DruckerPrager, ElasticSolid, Fluid  # noqa: F401  (case files import them from here)
-from .stabilisers.transport_velocity import STABILISERS
+from .stabilisers import stabiliser_names
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
@@ -117,18 +117,24 @@ class Case:
     dim: int
     domain: tuple  # (lo, hi) corners; a particle leaving it stops the run
     dp: float
-    material: object  # Fluid, ElasticSolid or DruckerPrager
+    material: object  # Fluid, ElasticSolid or DruckerPrager (materials.py)
+    scheme: str  # a name of mpisph.schemes.SCHEMES that takes the material
     bodies: list
     walls: list = field(default_factory=list)
     gravity: tuple | None = None
     periodic: tuple | None = None
     slab_axis: int = 0
     density_reinit: str = "none"  # none | inner | free_surface
-    stabiliser: str = "none"  # see mpisph.stabilisers.transport_velocity.STABILISERS
+    stabilisers: tuple | str = ()  # names of mpisph.stabilisers.STABILISERS, in order ("a,b" or "none" too)
+    forces: list = field(default_factory=list)  # the case's own force terms (forces.ForceTerm), last in the sum
+    integrator: str = "position_verlet"  # a name of mpisph.integrators.INTEGRATORS
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
     probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
 
     def __post_init__(self):
+        if isinstance(self.stabilisers, str):
+            self.stabilisers = stabiliser_names(self.stabilisers)
+        self.stabilisers = tuple(self.stabilisers)
         self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
@@ -166,8 +172,6 @@ class Case:
         for a in range(self.dim):
             if self.periodic[a] and hi[a] - lo[a] < 2 * support:
                 raise InputError(f"periodic axis {'xyz'[a]} is shorter than twice the kernel support")
-        if self.stabiliser not in STABILISERS:
-            raise InputError(f"stabiliser must be one of {', '.join(STABILISERS)}, not {self.stabiliser!r}")
         if self.density_reinit not in ("none", "inner", "free_surface"):
             raise InputError(f"density_reinit must be none, inner or free_surface, not {self.density_reinit!r}")
 

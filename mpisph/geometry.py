@@ -8,6 +8,13 @@ side is not a multiple of dp holds floor(L/dp) particles along it.
 import numpy as np
 
 from .errors import InputError
+from .kernels import SUPPORT_FACTOR
+
+
+def support_layers(h_factor):
+    """Lattice layers that cover one kernel support, SUPPORT_FACTOR h = SUPPORT_FACTOR h_factor dp:
+    how deep dummy walls (or a clamp) must be."""
+    return int(np.ceil(SUPPORT_FACTOR * h_factor))
 
 
 def _axis_points(lo, hi, dp, what):

@@ -7,38 +7,8 @@ its position. Global ids follow the order of the case's bodies, then walls.
 
 import numpy as np
 
-from . import surface
-from .kernels import KERNELS, normalisation
-from .materials import DruckerPrager, ElasticSolid, Fluid
-from .particles import CLAMPED, CORE_FIELDS, MOVING, WALL, WALL_SLIP, Particles
-from .physics.drucker_prager import DruckerPragerModel
-from .physics.elastic import ElasticModel
-from .physics.fluid import FluidScheme, lattice_kernel_sum
-from .physics.solid import SolidScheme
-from .stabilisers.transport_velocity import STABILISERS
+from .particles import CLAMPED, MOVING, WALL, WALL_SLIP, Particles
 from .tensors import packed
-
-
-def make_scheme(case, params):
-    """The scheme of the case's material."""
-    m = case.material
-    if isinstance(m, DruckerPrager):
-        return SolidScheme(DruckerPragerModel(m, case.dim, case.gravity), case.gravity, case.u_ref)
-    if isinstance(m, ElasticSolid):
-        return SolidScheme(ElasticModel(m), case.gravity, case.u_ref)
-    assert isinstance(m, Fluid)
-    h = params["h_factor"] * case.dp
-    kernel = KERNELS[params["kernel"]]
-    lattice_sum = lattice_kernel_sum(case.dim, case.dp, h, normalisation(kernel, h, case.dim), kernel)
-    return FluidScheme(m, case.gravity, case.density_reinit, case.u_ref, lattice_sum)
-
-
-def particle_fields(scheme, stabiliser):
-    """Core fields, the scheme's, and the surface fields if the scheme or the stabiliser needs them."""
-    fields = CORE_FIELDS + scheme.fields
-    if getattr(scheme, "needs_surface", False) or STABILISERS[stabiliser].needs_surface:
-        fields += surface.FIELDS
-    return fields
 
 
 def _share(comm, arrays, fields, dim):
@@ -52,7 +22,8 @@ def _share(comm, arrays, fields, dim):
     return pa
 
 
-def particles_from_case(comm, case, scheme):
+def particles_from_case(comm, case, parts):
+    """This rank's share of the particles of ``case``, with the fields of ``parts`` (parts.py)."""
     dim, dp = case.dim, case.dp
     m = case.material
     xs, kinds, vs, ps, normals, stresses = [], [], [], [], [], []
@@ -83,7 +54,7 @@ def particles_from_case(comm, case, scheme):
     kind = np.concatenate(kinds)
     p = np.concatenate(ps)
     material = (kind == MOVING) | (kind == CLAMPED)
-    rho = np.where(material, scheme.initial_density(p), m.rho0)
+    rho = np.where(material, parts.scheme.initial_density(p), m.rho0)
     arrays = {
         "gid": np.arange(len(kind), dtype=np.int64),
         "kind": kind,
@@ -95,12 +66,12 @@ def particles_from_case(comm, case, scheme):
         "normal": np.concatenate(normals),
         "stress": np.concatenate(stresses),
     }
-    return _share(comm, arrays, particle_fields(scheme, case.stabiliser), dim)
+    return _share(comm, arrays, parts.fields, dim)
 
 
-def particles_from_frame(comm, frame, scheme, stabiliser):
+def particles_from_frame(comm, frame, parts):
     """Particles (walls included) from ``read_frame(path, walls=True)``; symmetric tensors that a
     frame of format 1 holds as (3, 3) are packed (tensors.py)."""
     arrays = {k: (packed(v) if v.ndim == 3 and v.shape[1] == v.shape[2] else v)
               for k, v in frame.items() if isinstance(v, np.ndarray)}
-    return _share(comm, arrays, particle_fields(scheme, stabiliser), frame["dim"])
+    return _share(comm, arrays, parts.fields, frame["dim"])

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernels import KERNELS, SUPPORT_FACTOR, normalisation
+from .kernels import Kernel
 from .neighbours import neighbour_lists
 from .particles import MOVING
 from .surface import SURFACE_THRESHOLD, position_divergence
@@ -92,17 +92,17 @@ def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
     moving = kind == MOVING
     n_moving = int(moving.sum())
     dp = float(np.median((mass[moving] / rho[moving]) ** (1.0 / dim)))
-    h = frame["params"].get("h_factor", 1.3) * dp
-    kernel = KERNELS[frame["params"].get("kernel", "wendland_c2")]
+    kernel = Kernel(frame["params"].get("kernel", "wendland_c2"), frame["params"].get("h_factor", 1.3) * dp, dim)
+    h = kernel.h
     order = np.argsort(~moving, kind="stable")  # moving particles first: they get lists
     x, kind, mass, rho, gid = x[order], kind[order], mass[order], rho[order], frame["gid"][order]
     if any(periodic_lengths):
         x, (kind, mass, rho, gid) = _with_periodic_images(x, [kind, mass, rho, gid], domain_lo,
-                                                           periodic_lengths, SUPPORT_FACTOR * h)
+                                                           periodic_lengths, kernel.support)
     n = len(x)
-    start, nbr = neighbour_lists(x, gid, kind, n_moving, SUPPORT_FACTOR * h, x.min(axis=0))
+    start, nbr = neighbour_lists(x, gid, kind, n_moving, kernel.support, x.min(axis=0))
     div = np.zeros(n)
-    position_divergence(n_moving, start, nbr, x, mass, rho, kind, h, normalisation(kernel, h, dim), kernel, div)
+    position_divergence(n_moving, start, nbr, x, mass, rho, kind, kernel.params, div)
     start, nbr = neighbour_lists(x, gid, kind, n_moving, SURROUNDING_REACH * h, x.min(axis=0))
     nearest = np.full(n, np.inf)
     surrounded = np.zeros(n, np.bool_)

@@ -1,62 +1,131 @@
-"""Smoothing kernels: Wendland C2 and the cubic B-spline, in 2D and 3D.
+"""Smoothing kernels: one object per kernel, and the numba functions the pair loops call.
 
-Both have compact support 2h. The papers use Wendland C2 with h = 1.3 dp
-(000_ Sec. 4, 001_ Sec. 4). Kernels are selected by an integer id so that the
-numba loops can take it as a plain argument.
+A ``Kernel`` holds everything about one kernel at one smoothing length: its
+name, support radius (``SUPPORT_FACTOR`` h), normalisation in 1, 2 or 3
+dimensions, value, gradient and the lattice sum that density summation divides
+by. ``Kernel(name, h, dim)`` refuses an unknown name.
+
+The pair loops take ``Kernel.params``, a numba-friendly named tuple (kind id,
+h, sigma_d), and evaluate the kernel of a pair with ``pair_w(k, r, i, j)`` and
+``pair_dw(k, r, i, j)``. Every kernel here has one smoothing length for all
+particles, so a pair evaluation is W(r_ij). A kernel with a parameter per
+particle (the adaptive B-spline of 002_, a variable h) takes the mean of the
+two particles' kernels, W_ij = (W(r; a_i) + W(r; a_j)) / 2: the pair weight is
+then the same seen from i and from j, grad_i W_ij = -grad_j W_ji, and the pair
+forces stay antisymmetric, which conserves linear momentum.
 
 Conventions used throughout mpisph: r_ij = x_i - x_j, e_ij = r_ij / |r_ij|
-(pointing from j to i), grad_i W_ij = W'(r_ij) e_ij with W' <= 0.
+(pointing from j to i), grad_i W_ij = W'(r_ij) e_ij with W' <= 0. The papers
+use Wendland C2 with h = 1.3 dp (000_ Sec. 4, 001_ Sec. 4).
 """
 
 import math
+from collections import namedtuple
 
+import numpy as np
 from numba import njit
+
+from .errors import InputError
 
 WENDLAND_C2 = 0
 CUBIC_SPLINE = 1
 
-KERNELS = {"wendland_c2": WENDLAND_C2, "cubic_spline": CUBIC_SPLINE}
-
 SUPPORT_FACTOR = 2.0  # support radius = SUPPORT_FACTOR * h for every kernel here
 
+KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
+
+
+class Kernel:
+    """One smoothing kernel at smoothing length ``h`` in ``dim`` dimensions."""
+
+    def __init__(self, name, h, dim):
+        if name not in KERNELS:
+            raise InputError(f"kernel must be one of {', '.join(KERNELS)}, not {name!r}")
+        self.name = name
+        self.kind = KERNELS[name]
+        self.h = float(h)
+        self.dim = dim
+        self.support = SUPPORT_FACTOR * self.h
+        self.sigma = normalisation(self.kind, self.h, dim)
+        self.params = KernelParams(self.kind, self.h, self.sigma)
+
+    def value(self, r):
+        """W(r) for an array of distances (any shape)."""
+        r = np.asarray(r, dtype=float)
+        out = np.empty(r.size)
+        _values(r.ravel(), self.params, False, out)
+        return out.reshape(r.shape)
+
+    def derivative(self, r):
+        """dW/dr (non-positive) for an array of distances (any shape)."""
+        r = np.asarray(r, dtype=float)
+        out = np.empty(r.size)
+        _values(r.ravel(), self.params, True, out)
+        return out.reshape(r.shape)
+
+    def lattice_sum(self, dp):
+        """V0 sum_j W_ij (self included) over a full square or cubic lattice of spacing dp, V0 = dp^d."""
+        m = int(np.ceil(self.support / dp)) + 1
+        axis = np.arange(-m, m + 1) * dp
+        grids = np.meshgrid(*([axis] * self.dim), indexing="ij")
+        r = np.sqrt(sum(g.ravel() ** 2 for g in grids))
+        return dp**self.dim * float(sum(self.value(r)))
+
+
+KERNELS = {"wendland_c2": WENDLAND_C2, "cubic_spline": CUBIC_SPLINE}
+
+
+def normalisation(kind, h, dim):
+    """Normalisation constant sigma_d of kernel ``kind`` in ``dim`` = 1, 2 or 3 dimensions."""
+    if kind == WENDLAND_C2:
+        return {1: 3.0 / (4.0 * h), 2: 7.0 / (4.0 * math.pi * h * h), 3: 21.0 / (16.0 * math.pi * h * h * h)}[dim]
+    return {1: 2.0 / (3.0 * h), 2: 10.0 / (7.0 * math.pi * h * h), 3: 1.0 / (math.pi * h * h * h)}[dim]
+
 
 @njit(cache=True)
-def normalisation(kernel, h, dim):
-    """Normalisation constant sigma_d of the kernel in `dim` dimensions."""
-    if kernel == WENDLAND_C2:
-        if dim == 2:
-            return 7.0 / (4.0 * math.pi * h * h)
-        return 21.0 / (16.0 * math.pi * h * h * h)
-    if dim == 2:
-        return 10.0 / (7.0 * math.pi * h * h)
-    return 1.0 / (math.pi * h * h * h)
-
-
-@njit(cache=True)
-def w(r, h, sigma, kernel):
-    """Kernel value W(r, h); sigma from `normalisation`."""
-    q = r / h
+def w(r, k):
+    """Kernel value W(r) of the kernel ``k`` (a ``KernelParams``)."""
+    q = r / k.h
     if q >= 2.0:
         return 0.0
-    if kernel == WENDLAND_C2:
+    if k.kind == WENDLAND_C2:
         t = 1.0 - 0.5 * q
-        return sigma * t * t * t * t * (2.0 * q + 1.0)
+        return k.sigma * t * t * t * t * (2.0 * q + 1.0)
     if q < 1.0:
-        return sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q)
+        return k.sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q)
     t = 2.0 - q
-    return sigma * 0.25 * t * t * t
+    return k.sigma * 0.25 * t * t * t
 
 
 @njit(cache=True)
-def dw(r, h, sigma, kernel):
-    """Radial derivative dW/dr (non-positive)."""
-    q = r / h
+def dw(r, k):
+    """Radial derivative dW/dr (non-positive) of the kernel ``k``."""
+    q = r / k.h
     if q >= 2.0:
         return 0.0
-    if kernel == WENDLAND_C2:
+    if k.kind == WENDLAND_C2:
         t = 1.0 - 0.5 * q
-        return -5.0 * sigma / h * q * t * t * t
+        return -5.0 * k.sigma / k.h * q * t * t * t
     if q < 1.0:
-        return sigma / h * (-3.0 * q + 2.25 * q * q)
+        return k.sigma / k.h * (-3.0 * q + 2.25 * q * q)
     t = 2.0 - q
-    return -0.75 * sigma / h * t * t
+    return -0.75 * k.sigma / k.h * t * t
+
+
+@njit(inline="always")
+def pair_w(k, r, i, j):
+    """W_ij of the pair (i, j) at distance r (module docstring: the same seen from i and j)."""
+    return w(r, k)
+
+
+@njit(inline="always")
+def pair_dw(k, r, i, j):
+    """dW_ij/dr of the pair (i, j) at distance r; grad_i W_ij = pair_dw e_ij."""
+    return dw(r, k)
+
+
+@njit(cache=True)
+def _values(r, k, derivative, out):
+    """out = W(r) (or dW/dr) element by element."""
+    for m in range(len(r)):
+        out[m] = dw(r[m], k) if derivative else w(r[m], k)

@@ -24,8 +24,8 @@ class Fluid:
 
 
 @dataclass
-class ElasticSolid:
-    """Linear elastic solid: density, Young's modulus, Poisson's ratio."""
+class ElasticConstants:
+    """Density, Young's modulus and Poisson's ratio, and the constants derived from them."""
 
     rho0: float
     E: float
@@ -48,7 +48,12 @@ class ElasticSolid:
 
 
 @dataclass
-class DruckerPrager(ElasticSolid):
+class ElasticSolid(ElasticConstants):
+    """Linear elastic solid: density, Young's modulus, Poisson's ratio."""
+
+
+@dataclass
+class DruckerPrager(ElasticConstants):
     """Drucker-Prager soil: adds cohesion c [Pa], friction and dilatancy angles [deg]."""
 
     cohesion: float = 0.0

@@ -19,13 +19,13 @@ def decay_rate(t, energy):
     return np.polyfit(np.asarray(t), np.log(np.asarray(energy)), 1)[0]
 
 
-def line_average(frame, points, component, h):
-    """Velocity ``component`` at ``points`` (k, dim): Wendland-weighted average of particles within 2h."""
+def line_average(frame, points, component, kernel):
+    """Velocity ``component`` at ``points`` (k, dim): the ``kernel``-weighted average (a Kernel,
+    kernels.py) of the particles within its support."""
     x, v = frame["x"], frame["v"][:, component]
     out = np.full(len(points), np.nan)
     for k, q in enumerate(np.asarray(points, dtype=float)):
-        q_ = np.linalg.norm(x - q, axis=1) / h
-        w = np.where(q_ < 2.0, (1.0 - 0.5 * q_) ** 4 * (2.0 * q_ + 1.0), 0.0)
+        w = kernel.value(np.linalg.norm(x - q, axis=1))
         if w.sum() > 0:
             out[k] = np.sum(w * v) / w.sum()
     return out

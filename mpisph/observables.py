@@ -53,7 +53,7 @@ def observable_names(dim, scheme=None, probes=()):
     ang = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
     names += ["potential_energy"]
-    names += list(getattr(scheme, "observable_names", ()))
+    names += list(scheme.observable_names if scheme is not None else ())
     for probe in probes:
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     return names
@@ -77,7 +77,7 @@ def global_observables(sim):
     dim = pa.dim
     motion = np.zeros(3 + dim + (1 if dim == 2 else 3) + 1)
     moving_sums(n, pa.kind, pa.mass, pa.x, pa.v, sim.case.gravity, motion)
-    extra = sim.scheme.observables(pa, n) if hasattr(sim.scheme, "observables") else {}
+    extra = sim.parts.scheme.observables(pa, n)
     probes = sim.case.probes
     local = np.concatenate((motion, list(extra.values()), _probe_positions(pa, n, list(probes.values()), dim)))
     total = np.empty_like(local)
@@ -85,6 +85,6 @@ def global_observables(sim):
     k = len(total) - len(probes) * dim
     displacement = total[k:] - np.concatenate([sim.case.probe_origins[name] for name in probes] or [[]])
     values = [sim.t, sim.step, sim.dt] + total[:k].tolist() + displacement.tolist()
-    out = dict(zip(observable_names(dim, sim.scheme, probes), values))
+    out = dict(zip(observable_names(dim, sim.parts.scheme, probes), values))
     out["n"] = int(out["n"])
     return out

@@ -10,7 +10,7 @@ a cube standing in the middle of a square floor with a low rim.
 import numpy as np
 
 from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall
-from .geometry import box, box_walls
+from .geometry import box, box_walls, support_layers
 from .physics.drucker_prager import geostatic_stress
 
 
@@ -48,7 +48,7 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
     block = box(lo, hi, p.dp, f"the {name}")
     height = hi[-1] - lo[-1]
-    layers = int(np.ceil(2 * p.h_factor))
+    layers = support_layers(p.h_factor)
     up = "+" + "xyz"[dim - 1]
     wall_x, wall_n = box_walls(tank_lo, tank_hi, p.dp, layers, open_sides=(up,))
     margin = layers * p.dp
@@ -60,9 +60,10 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
         domain=(domain_lo, domain_hi),
         dp=p.dp,
         material=soil,
+        scheme="riemann_granular",
         bodies=[Body(name, block, stress=geostatic_stress(block, hi[-1], soil, p.g))],
         walls=[Wall("tank", wall_x, wall_n)],
         gravity=gravity,
-        stabiliser=p.stabiliser,
+        stabilisers=p.stabiliser,
         u_ref=float(np.sqrt(2.0 * p.g * height)),
     )

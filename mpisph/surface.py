@@ -12,14 +12,14 @@ a class:
   outermost);
 - INNER: the rest.
 
-``classify(s)`` fills the fields ``div_r`` and ``surface`` of the owned
-particles of a Simulation; the divergence of ghosts is refreshed in between.
+``classify(ctx)`` fills the fields ``div_r`` and ``surface`` of the owned
+particles of a StepContext; the divergence of ghosts is refreshed in between.
 """
 
 import numpy as np
 from numba import njit
 
-from .kernels import dw
+from .kernels import pair_dw
 from .neighbours import pair_distance
 from .particles import Field, is_wall
 
@@ -33,7 +33,7 @@ FIELDS = (
 
 
 @njit(cache=True)
-def position_divergence(n, start, nbr, x, mass, rho, kind, h, sigma, kernel, out):
+def position_divergence(n, start, nbr, x, mass, rho, kind, k, out):
     """out_i = -sum_j V_j r_ij . grad_i W_ij for the material particles in [0, n)."""
     for i in range(n):
         if is_wall(kind[i]):
@@ -42,7 +42,7 @@ def position_divergence(n, start, nbr, x, mass, rho, kind, h, sigma, kernel, out
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             r = pair_distance(x, i, j)
-            acc -= mass[j] / rho[j] * r * dw(r, h, sigma, kernel)
+            acc -= mass[j] / rho[j] * r * pair_dw(k, r, i, j)
         out[i] = acc
 
 
@@ -69,10 +69,11 @@ def surface_classes(n, start, nbr, x, kind, div_r, threshold, h, out):
             out[i] = NEAR_SURFACE if near_outer else INNER
 
 
-def classify(s):
-    """Fill ``div_r`` and ``surface`` of the owned particles of Simulation ``s``."""
-    pa = s.particles
+def classify(ctx):
+    """Fill ``div_r`` and ``surface`` of the owned particles of the StepContext ``ctx``."""
+    pa = ctx.particles
     n = pa.n_owned
-    position_divergence(n, s.start, s.nbr, s.xc, pa.mass, pa.rho, pa.kind, *s.kernel_args, pa.div_r)
-    s.halo.refresh(pa, ["div_r"])
-    surface_classes(n, s.start, s.nbr, s.xc, pa.kind, pa.div_r, SURFACE_THRESHOLD * pa.dim, s.h, pa.surface)
+    position_divergence(n, ctx.start, ctx.nbr, ctx.xc, pa.mass, pa.rho, pa.kind, ctx.kernel.params, pa.div_r)
+    ctx.refresh(["div_r"])
+    surface_classes(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.div_r, SURFACE_THRESHOLD * pa.dim, ctx.kernel.h,
+                    pa.surface)

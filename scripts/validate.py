@@ -19,6 +19,7 @@ from mpisph import measure, references  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
+from mpisph.kernels import Kernel  # noqa: E402
 from mpisph.launch import mpirun_mpisph  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -137,13 +138,13 @@ def dam_break(ranks):
 
 def cavity(ranks):
     frames, _, cmd = run("lid_driven_cavity", "lid_driven_cavity", ["--t-end", "20", "--output-interval", "5"], ranks)
-    last, h = frames[-1], 1.3 / 50
+    last, kernel = frames[-1], Kernel("wendland_c2", 1.3 / 50, 2)
     ys = np.linspace(0, 1, 101)
-    u = measure.line_average(last, np.stack([np.full_like(ys, 0.5), ys], 1), 0, h)
-    v = measure.line_average(last, np.stack([ys, np.full_like(ys, 0.5)], 1), 1, h)
+    u = measure.line_average(last, np.stack([np.full_like(ys, 0.5), ys], 1), 0, kernel)
+    v = measure.line_average(last, np.stack([ys, np.full_like(ys, 0.5)], 1), 1, kernel)
     gy, gx = references.GHIA_Y[1:-1], references.GHIA_X[1:-1]
-    ug = measure.line_average(last, np.stack([np.full_like(gy, 0.5), gy], 1), 0, h)
-    vg = measure.line_average(last, np.stack([gx, np.full_like(gx, 0.5)], 1), 1, h)
+    ug = measure.line_average(last, np.stack([np.full_like(gy, 0.5), gy], 1), 0, kernel)
+    vg = measure.line_average(last, np.stack([gx, np.full_like(gx, 0.5)], 1), 1, kernel)
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
     ax[0].plot(references.GHIA_U, references.GHIA_Y, "ks", label="Ghia et al. 1982")
     ax[0].plot(u, ys, "-", label="mpisph")

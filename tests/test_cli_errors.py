@@ -134,3 +134,28 @@ def test_blow_up_names_step_time_rank_particle(tmp_path):
     frames = sorted(p.name for p in out.glob("frame_*.vtkhdf"))
     assert len(frames) >= 2  # the first frame and the last one at the blow-up
     shutil.rmtree(out)
+
+
+@pytest.mark.parametrize("old, new, fragments", [
+    ('scheme="riemann_fluid"', 'scheme="riemann_granular"', ["scheme riemann_granular takes a DruckerPrager",
+                                                              "not Fluid"]),
+    ('scheme="riemann_fluid"', 'scheme="sph"', ["scheme must be one of riemann_fluid"]),
+    ('scheme="riemann_fluid"', 'scheme="riemann_fluid", stabilisers="tvf,artificial"',
+     ["stabiliser must be none or one of", "'artificial'"]),
+    ('scheme="riemann_fluid"', 'scheme="riemann_fluid", integrator="euler"', ["integrator must be one of"]),
+])
+def test_parts_that_do_not_exist_or_fit(tmp_path, old, new, fragments):
+    """A case naming an unknown scheme, stabiliser or integrator, or a scheme for another
+    material, is refused with one line."""
+    src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "elliptical_drop.py")).read()
+    assert old in src
+    (tmp_path / "drop.py").write_text(src.replace(old, new))
+    result = mpisph([tmp_path / "drop.py", *TINY, "--out", tmp_path / "o"], timeout=120)
+    assert_clean_error(result, *fragments)
+    assert not (tmp_path / "o").exists()
+
+
+def test_unknown_kernel(existing_output):
+    out, _ = existing_output
+    result = mpisph(["elliptical_drop", "--set", "kernel=gaussian", "--out", out, "--quiet"], timeout=120)
+    assert_clean_error(result, "kernel must be one of")

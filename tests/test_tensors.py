@@ -4,10 +4,10 @@ still restart."""
 import numpy as np
 from mpi4py import MPI
 
+from mpisph.case import RUN_PARAMS, Case
 from mpisph.initial import particles_from_frame
 from mpisph.materials import DruckerPrager
-from mpisph.physics.drucker_prager import DruckerPragerModel
-from mpisph.physics.solid import SolidScheme
+from mpisph.parts import make_parts
 from mpisph.tensors import component, packed, unpacked
 
 FULL = np.array([[[1.0, 4.0, 6.0], [4.0, 2.0, 5.0], [6.0, 5.0, 3.0]]])
@@ -36,8 +36,9 @@ def test_format_1_frame_with_full_tensors_is_packed_on_restart():
              "v": np.zeros((n, dim)), "mass": np.ones(n), "rho": np.ones(n), "p": np.zeros(n),
              "normal": np.zeros((n, dim)), "stress": stress, "B": B, "plastic_strain": np.zeros(n)}
     soil = DruckerPrager(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=0.0, phi=30.0, psi=0.0)
-    gravity = np.array([0.0, -9.81])
-    scheme = SolidScheme(DruckerPragerModel(soil, dim, gravity), gravity, 1.0)
-    pa = particles_from_frame(MPI.COMM_SELF, frame, scheme, "utvf")
+    case = Case(dim=dim, domain=((0.0, 0.0), (1.0, 1.0)), dp=0.1, material=soil, scheme="riemann_granular",
+                bodies=[], gravity=(0.0, -9.81), stabilisers="utvf")
+    parts = make_parts(case, {name: p.default for name, p in RUN_PARAMS.items()})
+    pa = particles_from_frame(MPI.COMM_SELF, frame, parts)
     np.testing.assert_array_equal(unpacked(pa.stress, 3), stress)
     np.testing.assert_array_equal(unpacked(pa.B, 2), B)

@@ -14,6 +14,7 @@ import pytest
 from mpisph import measure, references
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.kernels import Kernel
 from mpirun import mpisph
 
 
@@ -50,10 +51,10 @@ def test_rotating_square_patch(tmp_path):
 def test_lid_driven_cavity_re100(tmp_path):
     """dp = 1/50, Re = 100: RMS error of u and v on the centre lines against Ghia <= 0.03."""
     frames, _ = run("lid_driven_cavity", ["--t-end", "10", "--output-interval", "5"], tmp_path, ranks=1)
-    last, h = frames[-1], 1.3 / 50
+    last, kernel = frames[-1], Kernel("wendland_c2", 1.3 / 50, 2)
     y, x = references.GHIA_Y[1:-1], references.GHIA_X[1:-1]
-    u = measure.line_average(last, np.stack([np.full_like(y, 0.5), y], 1), 0, h)
-    v = measure.line_average(last, np.stack([x, np.full_like(x, 0.5)], 1), 1, h)
+    u = measure.line_average(last, np.stack([np.full_like(y, 0.5), y], 1), 0, kernel)
+    v = measure.line_average(last, np.stack([x, np.full_like(x, 0.5)], 1), 1, kernel)
     assert np.sqrt(np.mean((u - references.GHIA_U[1:-1]) ** 2)) <= 0.03
     assert np.sqrt(np.mean((v - references.GHIA_V[1:-1]) ** 2)) <= 0.03
 

@@ -55,7 +55,8 @@ class Halo:
                 yield idx, shift
 
     def build(self, particles):
-        """Replace the ghosts of ``particles`` by a fresh halo; every field is sent."""
+        """Replace the ghosts of ``particles`` by a fresh halo: the core fields are sent, every other
+        floating-point field of the ghosts is NaN until ``refresh`` sends it."""
         comm, axis, size, me = self.comm, self.decomp.axis, self.comm.size, self.comm.rank
         x = particles.x[: particles.n_owned]
         dests, indices, shifts = [], [], []

@@ -30,18 +30,18 @@ import math
 import numpy as np
 from numba import njit
 
-from ..kernels import dw
+from ..kernels import pair_dw
+from ..materials import DruckerPrager
 from ..neighbours import pair_distance
 from ..particles import Field, is_wall
 from ..tensors import SYM3, unpack_row
-from .solid import jaumann_rate, material_pressure, velocity_gradient
+from .solid import SolidScheme, jaumann_rate, material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
 
 
 @njit(cache=True)
-def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0,
-                     h, sigma, kernel, rate):
+def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0, k, rate):
     """rate_i = the diffusion term of the module docstring (vertical axis = last axis), packed
     like the stress (tensors.py).
 
@@ -50,6 +50,7 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
     """
     dim = xc.shape[1]
     vert = dim - 1
+    h = k.h
     coef0 = 2.0 * DIFFUSION_ZETA * h * c0
     for i in range(n):
         if is_wall(kind[i]):
@@ -61,7 +62,7 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
             if is_wall(kind[j]):
                 continue
             r = pair_distance(xc, i, j)
-            f = coef0 * mass[j] / rho[j] * r * dw(r, h, sigma, kernel) / (r * r + 0.01 * h * h)
+            f = coef0 * mass[j] / rho[j] * r * pair_dw(k, r, i, j) / (r * r + 0.01 * h * h)
             f_sum += f
             geo_sum += f * rho0 * g * (xc[i, vert] - xc[j, vert])
             s0 += f * stress[j, 0]
@@ -71,8 +72,8 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
             s4 += f * stress[j, 4]
             s5 += f * stress[j, 5]
         sums = (s0, s1, s2, s3, s4, s5)
-        for k in range(6):
-            rate[i, k] = f_sum * stress[i, k] - sums[k]
+        for c in range(6):
+            rate[i, c] = f_sum * stress[i, c] - sums[c]
         for a in range(3):
             rate[i, a] -= geo_sum if a == vert else k0 * geo_sum
 
@@ -113,8 +114,7 @@ def return_mapping(sig, alpha_phi, k_c, dev):
 
 
 @njit(cache=True)
-def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel,
-                          diffusion, K, G, alpha_phi, alpha_psi, k_c, dt, stress, plastic_strain):
+def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, diffusion, K, G, alpha_phi, alpha_psi, k_c, dt, stress, plastic_strain):
     """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain, with
     L of Eq. 23 from ``velocity_gradient`` particle by particle."""
     L = np.empty((3, 3))
@@ -124,7 +124,7 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, s
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L)
         unpack_row(stress, i, sig)
         i1, sqrt_j2 = _deviator(sig, dev)
         tr_d = L[0, 0] + L[1, 1] + L[2, 2]
@@ -168,31 +168,34 @@ def geostatic_stress(x, top, soil, g):
     return stress
 
 
-class DruckerPragerModel:
-    """Constitutive part of ``SolidScheme`` for ``DruckerPrager``."""
+class RiemannGranular(SolidScheme):
+    """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
+    as printed (solid.py says why)."""
 
+    name = "riemann_granular"
+    materials = (DruckerPrager,)
     riemann_continuity = 1.0  # Eq. 16
-    corrected_shear_force = False  # Eq. 25 as printed (solid.py says why)
-    fields = (Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
-    observable_names = ()
+    corrected_shear_force = False  # Eq. 25 as printed
+    fields = SolidScheme.base_fields + (
+        Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
 
-    def __init__(self, material, dim, gravity):
-        self.material = material
-        self.eta = 20.0 * dim  # 000_ Sec. 3.1.3
-        self.g = float(np.linalg.norm(gravity))
+    def __init__(self, case, kernel):
+        super().__init__(case, kernel)
+        self.eta = 20.0 * case.dim  # 000_ Sec. 3.1.3
+        self.g = float(np.linalg.norm(case.gravity))
 
     def initial_density(self, pressure):
         return np.full_like(pressure, self.material.rho0)
 
-    def pressure(self, s):
-        pa = s.particles
+    def state(self, ctx):
+        pa = ctx.particles
         material_pressure(pa.n_owned, pa.kind, pa.stress, pa.p)
 
-    def update_stress(self, s, gradient, dt):
-        pa, m = s.particles, self.material
+    def update_stress(self, ctx, dt):
+        pa, m = ctx.particles, self.material
         n = pa.n_owned
-        diffusion, = s.workspace.scratch(((n, 6), np.float64))  # for this update only
-        stress_diffusion(n, s.start, s.nbr, s.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
-                         m.k0, m.c0, *s.kernel_args, diffusion)
-        drucker_prager_update(n, *gradient, diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
+        diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
+        stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
+                         m.k0, m.c0, ctx.kernel.params, diffusion)
+        drucker_prager_update(n, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)

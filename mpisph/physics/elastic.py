@@ -17,9 +17,10 @@ Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
 import numpy as np
 from numba import njit
 
+from ..materials import ElasticSolid
 from ..particles import WALL, WALL_SLIP, Field, is_wall
 from ..tensors import SYM3, unpack_row
-from .solid import jaumann_rate, velocity_gradient
+from .solid import SolidScheme, jaumann_rate, velocity_gradient
 
 
 @njit(cache=True)
@@ -36,7 +37,7 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
 
 
 @njit(cache=True)
-def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, G, dt, shear):
+def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, G, dt, shear):
     """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation),
     with L of Eq. 23 from ``velocity_gradient`` particle by particle; both stresses packed."""
     L = np.empty((3, 3))
@@ -45,7 +46,7 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sig
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L)
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L)
         trace = L[0, 0] + L[1, 1] + L[2, 2]
         unpack_row(shear, i, s_i)
         jaumann_rate(L, s_i, G, rate)
@@ -56,30 +57,30 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, h, sig
                 shear[i, SYM3[a, b]] += dt * rate[a, b]
 
 
-class ElasticModel:
-    """Constitutive part of ``SolidScheme`` for ``ElasticSolid``."""
+class RiemannElastic(SolidScheme):
+    """Elastic solid: beta = 1, Eq. 21 continuity, the corrected shear force (solid.py says why)."""
 
+    name = "riemann_elastic"
+    materials = (ElasticSolid,)
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
     corrected_shear_force = True  # solid.py: conserves kinetic + strain energy
-    fields = (Field("shear_stress", (6,), np.float64, "shear (deviatoric) stress, packed (tensors.py) [Pa]"),)
+    fields = SolidScheme.base_fields + (
+        Field("shear_stress", (6,), np.float64, "shear (deviatoric) stress, packed (tensors.py) [Pa]"),)
     observable_names = ("strain_energy",)
-
-    def __init__(self, material):
-        self.material = material
 
     def initial_density(self, pressure):
         return self.material.rho0 + pressure / self.material.c0**2
 
-    def pressure(self, s):
-        pa, m = s.particles, self.material
+    def state(self, ctx):
+        pa, m = ctx.particles, self.material
         elastic_pressure(pa.n_owned, pa.kind, pa.rho, m.rho0, m.c0, pa.shear_stress, pa.p, pa.stress)
 
-    def update_stress(self, s, gradient, dt):
-        pa = s.particles
-        shear_stress_update(pa.n_owned, *gradient, self.material.G, dt, pa.shear_stress)
+    def update_stress(self, ctx, dt):
+        pa = ctx.particles
+        shear_stress_update(pa.n_owned, *self.gradient_args(ctx), self.material.G, dt, pa.shear_stress)
 
-    def energies(self, pa, n):
+    def observables(self, pa, n):
         """Strain energy sum V (s:s/4G + p^2/2K) of the material particles."""
         m = self.material
         material = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))

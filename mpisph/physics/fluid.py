@@ -28,13 +28,14 @@ WALL_SLIP). The viscous term uses v_i - v_w (no-slip) or its normal part
 (free-slip).
 """
 
-import numpy as np
 from numba import njit
 
-from ..integrators import density_half, drift_half, kick
-from ..kernels import dw, w
+from ..forces import ForceTerm
+from ..kernels import pair_dw, pair_w
+from ..materials import Fluid
 from ..neighbours import pair_difference, pair_distance, pair_offset
-from ..particles import MOVING, WALL_SLIP, Field, is_wall
+from ..particles import MOVING, WALL_SLIP, is_wall
+from ..scheme import Scheme
 from .walls import wall_relative_normal, wall_relative_velocity
 
 RIEMANN_ETA = 3.0
@@ -59,9 +60,8 @@ def _wall_state(i, j, xc, rho, p, gravity):
 
 
 @njit(cache=True)
-def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
-                          c0, h, sigma, kernel, prior, dv_dt):
-    """dv/dt = prior - 2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
+def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity, c0, k, acc):
+    """acc += -2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
@@ -72,25 +72,24 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
             rho_j, p_j = rho[j], p[j]
-            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+            if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = min(RIEMANN_ETA * max(-u_jump / c0, 0.0), 1.0)
             p_star = 0.5 * (p[i] + p_j) - 0.25 * beta * (rho[i] + rho_j) * c0 * u_jump
-            f = -2.0 * mass[j] / rho[j] * p_star * dw(r, h, sigma, kernel) / r
+            f = -2.0 * mass[j] / rho[j] * p_star * pair_dw(k, r, i, j) / r
             a0 += f * d0
             a1 += f * d1
             a2 += f * d2
-        dv_dt[i, 0] = prior[i, 0] + a0 / rho[i]
-        dv_dt[i, 1] = prior[i, 1] + a1 / rho[i]
+        acc[i, 0] += a0 / rho[i]
+        acc[i, 1] += a1 / rho[i]
         if dim == 3:
-            dv_dt[i, 2] = prior[i, 2] + a2 / rho[i]
+            acc[i, 2] += a2 / rho[i]
 
 
 @njit(cache=True)
-def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
-               c0, riemann, h, sigma, kernel, drho_dt):
+def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity, c0, riemann, k, drho_dt):
     """drho/dt = rho_i sum_j V_j [u_jump + riemann (p_i - p_j)/(rho_bar c0)] W'_ij.
 
     ``riemann`` = 1: 000_ Eq. 16 (fluids, granular materials); 0: Eq. 21
@@ -105,42 +104,37 @@ def continuity(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity,
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
             rho_j, p_j = rho[j], p[j]
-            if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+            if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             dissipation = riemann * (p[i] - p_j) / (0.5 * (rho[i] + rho_j) * c0)
-            acc += mass[j] / rho[j] * (u_jump + dissipation) * dw(r, h, sigma, kernel)
+            acc += mass[j] / rho[j] * (u_jump + dissipation) * pair_dw(k, r, i, j)
         drho_dt[i] = rho[i] * acc
 
 
 @njit(cache=True)
-def prior_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, gravity,
-                       viscosity, h, sigma, kernel, prior):
-    """Gravity plus the viscous acceleration of 001_ Eq. 7, once per advection step."""
+def viscous_acceleration(n, start, nbr, xc, v, rho, mass, kind, normal, viscosity, k, acc):
+    """acc += the viscous acceleration of 001_ Eq. 7, pair by pair."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        for a in range(dim):
-            prior[i, a] = gravity[a]
-        if viscosity == 0.0:
-            continue
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             r = pair_distance(xc, i, j)
-            f = 2.0 * viscosity * mass[j] / rho[j] / rho[i] * dw(r, h, sigma, kernel) / (r + 0.01 * h)
+            f = 2.0 * viscosity * mass[j] / rho[j] / rho[i] * pair_dw(k, r, i, j) / (r + 0.01 * k.h)
             if kind[j] == WALL_SLIP:
                 vn = wall_relative_normal(i, j, v, normal)
                 for a in range(dim):
-                    prior[i, a] += f * vn * normal[j, a]
+                    acc[i, a] += f * vn * normal[j, a]
             else:
                 for a in range(dim):
-                    prior[i, a] += f * (v[i, a] - v[j, a])
+                    acc[i, a] += f * (v[i, a] - v[j, a])
 
 
 @njit(cache=True)
-def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, h, sigma, kernel, lattice_sum, free_surface):
+def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, k, lattice_sum, free_surface):
     """Density reinitialisation by kernel summation (001_ Eq. 8).
 
     rho_i = sum_j m_j W_ij / (V0 sum_j W_ij^0), self term included, with V0 =
@@ -155,10 +149,10 @@ def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, h, sigma, kernel
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        acc = mass[i] * w(0.0, h, sigma, kernel)
+        acc = mass[i] * pair_w(k, 0.0, i, i)
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
-            acc += mass[j] * w(pair_distance(xc, i, j), h, sigma, kernel)
+            acc += mass[j] * pair_w(k, pair_distance(xc, i, j), i, j)
         rho_sum = acc / lattice_sum
         if free_surface:
             rho[i] = rho_sum + max(0.0, rho[i] - rho_sum) * rho0 / rho[i]
@@ -166,71 +160,82 @@ def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, h, sigma, kernel
             rho[i] = rho_sum
 
 
-def lattice_kernel_sum(dim, dp, h, sigma, kernel):
-    """V0 sum_j W_ij (self included) over a full square/cubic lattice of spacing dp, V0 = dp^d."""
-    m = int(np.ceil(2.0 * h / dp)) + 1
-    axis = np.arange(-m, m + 1) * dp
-    grids = np.meshgrid(*([axis] * dim), indexing="ij")
-    r = np.sqrt(sum(g.ravel() ** 2 for g in grids))
-    return dp**dim * float(sum(w(ri, h, sigma, kernel) for ri in r))
+class Viscosity(ForceTerm):
+    """001_ Eq. 7 from the velocities of the configuration (frozen over it)."""
+
+    name = "viscosity"
+    frozen = True
+
+    def __init__(self, viscosity):
+        self.viscosity = viscosity
+
+    def add(self, ctx, acc):
+        if self.viscosity == 0.0:
+            return
+        pa = ctx.particles
+        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
+                             self.viscosity, ctx.kernel.params, acc)
 
 
-class FluidScheme:
-    """The order of the fluid sub-steps; kernels above do the work.
+class RiemannPressure(ForceTerm):
+    """The pressure acceleration with the Riemann interface pressure P* (module docstring)."""
 
-    Per advection step: optional density reinitialisation, then gravity and
-    viscosity as a prior acceleration. Per acoustic step (000_ Eqs. 39-41):
-    half drift with density, pressure from the EOS, ghost refresh of rho and
-    p, pressure acceleration and kick, ghost refresh of v, half drift, and
-    the density rate for the next half step.
+    name = "riemann_pressure"
+
+    def __init__(self, c0, gravity):
+        self.c0 = c0
+        self.gravity = gravity
+
+    def add(self, ctx, acc):
+        pa = ctx.particles
+        pressure_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind,
+                              pa.normal, self.gravity, self.c0, ctx.kernel.params, acc)
+
+
+class RiemannFluid(Scheme):
+    """Weakly compressible fluid with the Riemann solver (000_ Sec. 3, 001_ Sec. 2).
+
+    Per configuration: the optional density reinitialisation (001_ Eq. 8) and
+    the pressure from it; per step: the pressure from the density (the state),
+    and continuity (the rate).
     """
 
+    name = "riemann_fluid"
+    materials = (Fluid,)
+    state_fields = ("rho", "p")
     acoustic_cfl = 0.6  # 001_ Eq. 11
 
-    fields = (
-        Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
-        Field("prior", ("dim",), np.float64, "gravity + viscous acceleration [m/s^2]"),
-    )
-
-    def __init__(self, material, gravity, density_reinit, u_ref, lattice_sum):
-        self.m = material
-        self.gravity = gravity
-        self.density_reinit = density_reinit
-        self.u_ref = u_ref
-        self.lattice_sum = lattice_sum
+    def __init__(self, case, kernel):
+        super().__init__(case)
+        self.gravity = case.gravity
+        self.density_reinit = case.density_reinit
+        self.lattice_sum = kernel.lattice_sum(case.dp)
 
     def initial_density(self, pressure):
-        """Density that gives ``pressure`` through the EOS."""
-        return self.m.rho0 + pressure / self.m.c0**2
+        return self.material.rho0 + pressure / self.material.c0**2
 
-    def speeds(self):
-        """(sound speed, kinematic viscosity) for the time-step criteria."""
-        return self.m.c0, self.m.viscosity / self.m.rho0
+    @property
+    def kinematic_viscosity(self):
+        return self.material.viscosity / self.material.rho0
 
-    def configure(self, s):
-        """Once per advection step, after the neighbour lists are built."""
-        pa, k = s.particles, s.kernel_args
+    def forces(self):
+        return (Viscosity(self.material.viscosity), RiemannPressure(self.material.c0, self.gravity))
+
+    def configure(self, ctx):
+        if self.density_reinit == "none":
+            return
+        pa, m = ctx.particles, self.material
         n = pa.n_owned
-        if self.density_reinit != "none":
-            density_summation(n, s.start, s.nbr, s.xc, pa.kind, pa.mass, pa.rho, self.m.rho0, *k,
-                              self.lattice_sum, self.density_reinit == "free_surface")
-            equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
-            s.halo.refresh(pa, ["rho", "p"])
-        prior_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal,
-                           self.gravity, self.m.viscosity, *k, pa.prior)
+        density_summation(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, m.rho0, ctx.kernel.params,
+                          self.lattice_sum, self.density_reinit == "free_surface")
+        equation_of_state(n, pa.kind, pa.rho, pa.p, m.rho0, m.c0)
+        ctx.refresh(["rho", "p"])
 
-    def acoustic_step(self, s, dt):
-        pa, k = s.particles, s.kernel_args
-        n = pa.n_owned
-        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, True)
-        equation_of_state(n, pa.kind, pa.rho, pa.p, self.m.rho0, self.m.c0)
-        s.halo.refresh(pa, ["rho", "p"])
-        dv_dt, = s.workspace.scratch(((n, pa.dim), np.float64))  # the acceleration lives until the kick
-        pressure_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind,
-                              pa.normal, self.gravity, self.m.c0, *k, pa.prior, dv_dt)
-        kick(n, pa.kind, pa.v, dv_dt, dt)
-        s.halo.refresh(pa, ["v"])
-        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
-        continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
-                   self.gravity, self.m.c0, 1.0, *k, pa.drho_dt)
-        density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
+    def state(self, ctx):
+        pa, m = ctx.particles, self.material
+        equation_of_state(pa.n_owned, pa.kind, pa.rho, pa.p, m.rho0, m.c0)
+
+    def rates(self, ctx, dt):
+        pa = ctx.particles
+        continuity(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
+                   self.gravity, self.material.c0, 1.0, ctx.kernel.params, pa.drho_dt)

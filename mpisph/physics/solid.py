@@ -47,92 +47,31 @@ printed: plastic flow dissipates what the mismatch would add, and with B the
 cohesive cut (Sec. 5.2, dp = L/100) clusters at the toe of the sliding wedge
 (0.9% of the particles closer than dp/2 at 2 s against 0.04% without).
 
-The inverse in B is regularised where the neighbourhood is degenerate
-(a free corner, a splashed particle): with A = -sum_j V_j r_ij (x) grad W,
-B = (adj A + w I) / (det A + w), w = max(0, a_min - det A), which is A^-1
-wherever det A >= a_min = 0.2^d and blends towards the identity below.
+B is computed by correction.py (the transport-velocity shift uses it too).
 
 A wall particle takes the stress and density of the material particle it
 interacts with and the mirrored velocity of walls.py (000_ Sec. 5: no-slip
 walls after Bui et al. 2008).
 
-The order of the sub-steps of one acoustic step (position-based Verlet,
-000_ Eqs. 39-41) is spelled out in ``SolidScheme.acoustic_step``.
+The order of the sub-steps of a time step is the integrator's
+(integrators/position_verlet.py).
 """
 
 import numpy as np
 from numba import njit
 
-from ..integrators import density_half, drift_half, kick
-from ..kernels import dw
+from ..forces import ForceTerm
+from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
+from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity
 from .walls import wall_relative_velocity
 
-DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
-
 
 @njit(cache=True)
-def _regularised_inverse(A, out):
-    """out = (adj A + w I) / (det A + w) for a symmetric 2 x 2 or 3 x 3 A."""
-    dim = A.shape[0]
-    if dim == 2:
-        det = A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
-        out[0, 0] = A[1, 1]
-        out[0, 1] = -A[0, 1]
-        out[1, 0] = -A[1, 0]
-        out[1, 1] = A[0, 0]
-    else:
-        for a in range(3):
-            a1, a2 = (a + 1) % 3, (a + 2) % 3
-            for b in range(3):
-                b1, b2 = (b + 1) % 3, (b + 2) % 3
-                out[b, a] = A[a1, b1] * A[a2, b2] - A[a1, b2] * A[a2, b1]
-        det = A[0, 0] * out[0, 0] + A[0, 1] * out[1, 0] + A[0, 2] * out[2, 0]
-    w = max(0.0, DEGENERATE_DET ** dim - det)
-    for a in range(dim):
-        out[a, a] += w
-    for a in range(dim):
-        for b in range(dim):
-            out[a, b] /= det + w
-
-
-@njit(cache=True)
-def correction_matrix(n, start, nbr, xc, mass, rho, kind, h, sigma, kernel, B):
-    """B_i of 000_ Eq. 24 (regularised, packed) for the material particles in [0, n); zero for
-    walls. The inverse of a symmetric A is symmetric to the bit (its cofactors are the same
-    products)."""
-    dim = xc.shape[1]
-    A = np.empty((dim, dim))
-    inverse = np.empty((dim, dim))
-    for i in range(n):
-        if is_wall(kind[i]):
-            B[i, :] = 0.0
-            continue
-        a00 = a01 = a02 = a11 = a12 = a22 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r  # -V_j r_ij (x) grad W = f d (x) d
-            a00 += f * d0 * d0
-            a01 += f * d0 * d1
-            a02 += f * d0 * d2
-            a11 += f * d1 * d1
-            a12 += f * d1 * d2
-            a22 += f * d2 * d2
-        A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a01, a11
-        if dim == 3:
-            A[0, 2], A[2, 0], A[1, 2], A[2, 1], A[2, 2] = a02, a02, a12, a12, a22
-        _regularised_inverse(A, inverse)
-        for a in range(dim):
-            for b in range(a, dim):
-                B[i, component(dim, a, b)] = inverse[a, b]
-
-
-@njit(cache=True)
-def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma, kernel, L):
+def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L):
     """L_i of 000_ Eq. 23 of the material particle i into the 3 x 3 ``L`` (zero third row and
     column in 2D). The stress updates call it particle by particle, so that no n x 3 x 3 array
     of gradients is ever stored.
@@ -148,7 +87,7 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, h, sigma
         u0, u1, u2 = pair_difference(v, i, j)
         if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
             u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
-        f = -mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+        f = -mass[j] / rho[j] * pair_dw(k, r, i, j) / r
         m00 += f * u0 * d0
         m01 += f * u0 * d1
         m02 += f * u0 * d2
@@ -220,9 +159,9 @@ def _tensor_times(T, k, p, dim, d0, d1, d2):
 
 
 @njit(cache=True)
-def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
-                        c0, eta, h, sigma, kernel, gravity, dv_dt):
-    """dv/dt of the moving particles (module docstring); eta <= 0 means beta = 1.
+def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0, eta, k, acc):
+    """acc += the stress part of dv/dt of the moving particles (module docstring); eta <= 0
+    means beta = 1.
 
     The shear part takes T = s B from ``shear_force_tensor`` (corrected), or the packed
     stress itself, s = sigma + p I being formed on the fly (Eq. 25 as printed: no copy).
@@ -239,15 +178,15 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
-            k = j
+            q = j
             if is_wall(kind[j]):  # the wall takes the state of i; walls.py: off the common path
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
-                k = i
+                q = i
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = 1.0 if eta <= 0.0 else min(eta * max(u_jump / c0, 0.0), 1.0)
-            pressure = p[i] + p[k] - beta * 0.5 * (rho[i] + rho[k]) * c0 * u_jump
-            f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
-            t0, t1, t2 = _tensor_times(T, k, p, dim, d0, d1, d2)
+            pressure = p[i] + p[q] - beta * 0.5 * (rho[i] + rho[q]) * c0 * u_jump
+            f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
+            t0, t1, t2 = _tensor_times(T, q, p, dim, d0, d1, d2)
             a0 += f * (t0 - pressure * d0)
             a1 += f * (t1 - pressure * d1)
             a2 += f * (t2 - pressure * d2)
@@ -255,10 +194,10 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal,
             g1 += f * d1
             g2 += f * d2
         t0, t1, t2 = _tensor_times(T, i, p, dim, g0, g1, g2)
-        dv_dt[i, 0] = gravity[0] + (a0 + t0) / rho[i]
-        dv_dt[i, 1] = gravity[1] + (a1 + t1) / rho[i]
+        acc[i, 0] += (a0 + t0) / rho[i]
+        acc[i, 1] += (a1 + t1) / rho[i]
         if dim == 3:
-            dv_dt[i, 2] = gravity[2] + (a2 + t2) / rho[i]
+            acc[i, 2] += (a2 + t2) / rho[i]
 
 
 @njit(cache=True)
@@ -287,84 +226,76 @@ def output_invariants(n, stress, v, von_mises, speed):
         speed[i] = np.sqrt(vv)
 
 
-class SolidScheme:
-    """The order of the solid sub-steps; the constitutive model fills in its part.
+class RiemannStress(ForceTerm):
+    """The momentum sum of 000_ Eqs. 17, 22, 25-26 (module docstring)."""
 
-    The model (``ElasticModel`` or ``DruckerPragerModel``) provides: its
-    extra fields, ``eta`` of the momentum limiter, ``corrected_shear_force``
-    (B on the shear part of the momentum sum, module docstring),
-    ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21), ``pressure(s)`` (p and the
-    total stress from the current density or stress), ``update_stress(s,
-    gradient, dt)`` (``gradient``: the arguments of ``velocity_gradient`` after
-    i), and the names and values of its own energies (``observable_names``,
-    ``energies(pa, n)``, if any).
+    name = "riemann_stress"
+
+    def __init__(self, c0, eta, corrected):
+        self.c0 = c0
+        self.eta = eta
+        self.corrected = corrected
+
+    def add(self, ctx, acc):
+        pa = ctx.particles
+        if self.corrected:
+            T = ctx.workspace.get("shear_force", pa.n, (pa.dim, pa.dim))
+            shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, T)
+        else:
+            T = pa.stress
+        stress_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind,
+                            pa.normal, self.c0, self.eta, ctx.kernel.params, acc)
+
+
+class SolidScheme(Scheme):
+    """What elastic and granular schemes share; each subclass fills in its constitutive part.
+
+    A subclass sets ``eta`` (the momentum limiter, <= 0: beta = 1),
+    ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21) and ``corrected_shear_force``
+    (B on the shear part of the momentum sum, module docstring), and provides
+    ``state(ctx)`` (p and the total stress from the density or the stress) and
+    ``update_stress(ctx, dt)`` (the stress at the end of the step, from the
+    velocity gradient of Eq. 23).
     """
 
     needs_surface = True
     acoustic_cfl = 0.4  # 000_ Eq. 38: c0 of Eq. 6 is below the P-wave speed of a solid
+    state_fields = ("rho", "p", "stress")
+    eta = -1.0
+    riemann_continuity = 0.0
+    corrected_shear_force = False
 
     base_fields = (
-        Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
         Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]"),
         Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
     )
 
-    def __init__(self, model, gravity, u_ref):
-        self.model = model
-        self.m = model.material
-        self.gravity = gravity
-        self.u_ref = u_ref
-        self.fields = self.base_fields + model.fields
+    def __init__(self, case, kernel):
+        super().__init__(case)
+        self.gravity = case.gravity
 
-    def initial_density(self, pressure):
-        return self.model.initial_density(pressure)
+    def forces(self):
+        return (RiemannStress(self.material.c0, self.eta, self.corrected_shear_force),)
 
-    def speeds(self):
-        """(sound speed, kinematic viscosity) for the time-step criteria."""
-        return self.m.c0, 0.0
+    def configure(self, ctx):
+        """Correction matrices on the frozen positions (ghosts too when the momentum sum reads them)."""
+        ctx.correction_matrices()  # into pa.B
+        if self.corrected_shear_force:
+            ctx.refresh(["B"])
 
-    def configure(self, s):
-        """Once per advection step: correction matrices on the frozen positions (ghosts too
-        when the momentum sum reads them)."""
-        s.correction_matrices()  # into pa.B
-        if self.model.corrected_shear_force:
-            s.halo.refresh(s.particles, ["B"])
+    def rates(self, ctx, dt):
+        """Density rate, then the stress from the velocity gradient (particle by particle inside
+        ``update_stress``); the stress update reads rho of neighbours, so it comes before the
+        integrator's second density half step."""
+        pa = ctx.particles
+        continuity(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
+                   self.gravity, self.material.c0, self.riemann_continuity, ctx.kernel.params, pa.drho_dt)
+        self.update_stress(ctx, dt)
 
-    def acoustic_step(self, s, dt):
-        pa, k = s.particles, s.kernel_args
-        n = pa.n_owned
-        # 1. first half: positions and density to n + 1/2 (000_ Eq. 39)
-        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, True)
-        # 2. pressure and total stress, then every field the momentum sum reads
-        self.model.pressure(s)
-        s.halo.refresh(pa, ["rho", "p", "stress"])
-        # 3. momentum and kick (000_ Eq. 40), then the new velocities of ghosts
-        if self.model.corrected_shear_force:
-            T = s.workspace.get("shear_force", pa.n, (pa.dim, pa.dim))
-            shear_force_tensor(pa.n, pa.kind, pa.stress, pa.p, pa.B, T)
-        else:
-            T = pa.stress
-        dv_dt, = s.workspace.scratch(((n, pa.dim), np.float64))  # the acceleration lives until the kick
-        stress_acceleration(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind, pa.normal,
-                            self.m.c0, self.model.eta, *k, self.gravity, dv_dt)
-        kick(n, pa.kind, pa.v, dv_dt, dt)
-        s.halo.refresh(pa, ["v"])
-        # 4. second half: positions (000_ Eq. 41), density rate, stress from the velocity
-        #    gradient (Eq. 23, particle by particle inside the model's update), density
-        drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
-        continuity(n, s.start, s.nbr, s.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind, pa.normal,
-                   self.gravity, self.m.c0, self.model.riemann_continuity, *k, pa.drho_dt)
-        gradient = (s.start, s.nbr, s.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, *k)
-        self.model.update_stress(s, gradient, dt)  # reads rho of neighbours: before density_half
-        density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
-
-    @property
-    def observable_names(self):
-        return tuple(self.model.observable_names)
-
-    def observables(self, pa, n):
-        """Extra sums for diagnostics.csv over the owned particles [0, n): the model's energies."""
-        return self.model.energies(pa, n) if hasattr(self.model, "energies") else {}
+    def gradient_args(self, ctx):
+        """The arguments of ``velocity_gradient`` after i, for the stress updates."""
+        pa = ctx.particles
+        return (ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, ctx.kernel.params)
 
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles: von Mises, vertical stress, speed."""

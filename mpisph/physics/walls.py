@@ -7,11 +7,13 @@ only its normal part for a free-slip wall. Densities, pressures and stresses
 of the partner are chosen by each material (fluid: hydrostatic pressure
 extrapolation; solids: the wall takes the stress of particle i).
 
-Pair loops compute the plain difference v_i - v_j and call
-``wall_relative_velocity`` only when j is a wall particle. That keeps the
-common path straight-line code: an inlined helper with a branch inside, or
-any function call with array arguments on every pair, makes the loops two to
-three times slower (benchmarks/ceiling.py measures the bound).
+``wall_relative_velocity`` is the one place that mirrors a wall partner's
+velocity. Pair loops compute the plain difference v_i - v_j and call it only
+when j is a wall particle, with the test written in the loop. That keeps the
+common path straight-line code: moving the test and the call into one
+helper, inlined or not, makes the loops slower: continuity of the 2D column
+collapse at dp = 0.002 took 5.8 ms per call with an inlined helper instead of
+1.3 ms.
 """
 
 from numba import njit

@@ -38,10 +38,11 @@ import numpy as np
 from numba import njit
 
 from .. import surface
-from ..kernels import dw
+from ..kernels import pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING
 from ..tensors import component, size
+from .base import Stabiliser
 
 LIMITER_C = 1000.0
 LIMITER_THRESHOLD = 5e-4
@@ -51,13 +52,13 @@ NO_SHIFT_DIVERGENCE = 0.6  # times the dimension (000_ Sec. 3.3)
 
 
 @njit(cache=True)
-def kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel):
+def kernel_gradient_sum(i, start, nbr, xc, mass, rho, k):
     """g_i = sum_j V_j grad_i W_ij as three scalars (the third is 0 in 2D); called once per particle."""
     g0 = g1 = g2 = 0.0
     for s in range(start[i], start[i + 1]):
         j = nbr[s]
         d0, d1, d2, r = pair_offset(xc, i, j)
-        f = mass[j] / rho[j] * dw(r, h, sigma, kernel) / r
+        f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
         g0 += f * d0
         g1 += f * d1
         g2 += f * d2
@@ -65,14 +66,14 @@ def kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel):
 
 
 @njit(cache=True)
-def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
+def limited_shift(n, start, nbr, xc, x, mass, rho, kind, k):
     """Add the limited transport-velocity shift of 001_ Eq. 16 to the positions ``x``."""
     dim = xc.shape[1]
-    h2 = h * h
+    h2 = k.h * k.h
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel)
+        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, k)
         g0, g1, g2 = 2.0 * g0, 2.0 * g1, 2.0 * g2  # the doubled residue of the module docstring
         norm2 = h2 * (g0 * g0 + g1 * g1 + g2 * g2)
         if norm2 <= LIMITER_THRESHOLD:
@@ -85,17 +86,17 @@ def limited_shift(n, start, nbr, xc, x, mass, rho, kind, h, sigma, kernel):
 
 
 @njit(cache=True)
-def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unified, h, sigma, kernel):
+def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unified, k):
     """Add dr of 000_ Eq. 30 (``unified`` false: inner particles only) or Eq. 37 to ``x``."""
     dim = xc.shape[1]
-    scale = -2.0 * ALPHA * h * h
+    scale = -2.0 * ALPHA * k.h * k.h
     for i in range(n):
         if kind[i] != MOVING:
             continue
         if cls[i] != surface.INNER and (not unified or cls[i] == surface.SPLASHED
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
-        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, h, sigma, kernel)
+        g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, k)
         if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35; B packed)
             n0 = B[i, component(dim, 0, 0)] * g0 + B[i, component(dim, 0, 1)] * g1
             n1 = B[i, component(dim, 1, 0)] * g0 + B[i, component(dim, 1, 1)] * g1
@@ -117,37 +118,29 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
             x[i, 2] += scale * g2
 
 
-class NoStabiliser:
-    name = "none"
-    needs_surface = False
-
-    def apply(self, s):
-        pass
-
-
-class LimitedTransportVelocity(NoStabiliser):
+class LimitedTransportVelocity(Stabiliser):
     """Applies ``limited_shift`` (001_ Eq. 16) once per advection step."""
 
     name = "tvf_limited"
 
-    def apply(self, s):
-        pa = s.particles
-        limited_shift(pa.n_owned, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, *s.kernel_args)
+    def apply(self, ctx):
+        pa = ctx.particles
+        limited_shift(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.x, pa.mass, pa.rho, pa.kind, ctx.kernel.params)
 
 
-class TransportVelocity:
+class TransportVelocity(Stabiliser):
     """000_ Eq. 30 on inner particles only."""
 
     name = "tvf"
     needs_surface = True
     unified = False
 
-    def apply(self, s):
-        pa = s.particles
+    def apply(self, ctx):
+        pa = ctx.particles
         n = pa.n_owned
-        B = s.correction_matrices() if self.unified else np.empty((0, size(pa.dim)))  # not read
-        consistency_shift(n, s.start, s.nbr, s.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
-                          B, self.unified, *s.kernel_args)
+        B = ctx.correction_matrices() if self.unified else np.empty((0, size(pa.dim)))  # not read
+        consistency_shift(n, ctx.start, ctx.nbr, ctx.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
+                          B, self.unified, ctx.kernel.params)
 
 
 class UnifiedTransportVelocity(TransportVelocity):
@@ -155,7 +148,3 @@ class UnifiedTransportVelocity(TransportVelocity):
 
     name = "utvf"
     unified = True
-
-
-STABILISERS = {c.name: c for c in (NoStabiliser, LimitedTransportVelocity, TransportVelocity,
-                                   UnifiedTransportVelocity)}

@@ -1,0 +1,73 @@
+"""What a scheme is: the interface every discretisation of a material implements.
+
+A scheme is a named part a case selects (``Case.scheme``), registered in
+``mpisph.schemes.SCHEMES``. It owns per-particle fields, does its work once
+per neighbour configuration, gives its force terms and its rates, and says how
+large a time step it allows. It sees the step only through a ``StepContext``
+(context.py). The integrator calls it in this order (integrators/):
+
+    configure(ctx)      once per configuration, after the neighbour lists
+    state(ctx)          per step: what the momentum sum reads (pressure, stress),
+                        then the integrator refreshes ``state_fields`` on ghosts
+    forces()            the scheme's force terms, summed with the others (forces.py)
+    rates(ctx, dt)      per step, after the kick and the drift: the density rate
+                        drho/dt and whatever else the scheme integrates itself
+"""
+
+import math
+
+
+class Scheme:
+    """Base of every scheme; the defaults are what a scheme without that part does."""
+
+    name = ""
+    materials = ()  # the material classes (materials.py) this scheme discretises
+    fields = ()  # per-particle fields it owns (particles.Field)
+    state_fields = ()  # fields the momentum sum reads from neighbours
+    needs_surface = False  # free-surface classes every configuration (surface.py)
+    acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
+    observable_names = ()  # its columns of diagnostics.csv
+
+    def __init__(self, case):
+        self.material = case.material
+        self.dim = case.dim
+
+    def initial_density(self, pressure):
+        """Density of the material particles that gives ``pressure``."""
+        raise NotImplementedError
+
+    @property
+    def sound_speed(self):
+        """Artificial sound speed c0 of the time-step criteria [m/s]."""
+        return self.material.c0
+
+    @property
+    def kinematic_viscosity(self):
+        """nu of the advection criterion (001_ Eq. 10) [m^2/s]."""
+        return 0.0
+
+    def time_step_limit(self, ctx):
+        """A further limit on this rank's time step (a viscous or force criterion), inf if none."""
+        return math.inf
+
+    def forces(self):
+        """The scheme's force terms, in the order they are summed."""
+        return ()
+
+    def configure(self, ctx):
+        """Once per neighbour configuration."""
+
+    def state(self, ctx):
+        """Per step, before the momentum sum: the fields it reads (the scheme's ``state_fields``)."""
+
+    def rates(self, ctx, dt):
+        """Per step, after the kick and the drift: drho/dt, and any field the scheme integrates."""
+        raise NotImplementedError
+
+    def observables(self, pa, n):
+        """{column: sum over the owned particles [0, n)} for ``observable_names``."""
+        return {}
+
+    def derived_fields(self, pa, n):
+        """Output-only fields of the owned particles for frames."""
+        return {}

@@ -1,0 +1,24 @@
+"""What a stabiliser is: a correction applied once per neighbour configuration.
+
+A case lists its stabilisers in order (``Case.stabilisers``); after the
+scheme's configuration work and the frozen force terms, the solver calls
+``apply(ctx)`` of each in that order. A stabiliser may shift positions (the
+transport-velocity corrections), declare fields it needs (``fields``), ask
+for the free-surface classes (``needs_surface``) and add force terms to the
+acceleration (``forces()``, summed after the scheme's; forces.py).
+"""
+
+
+class Stabiliser:
+    """Base of every stabiliser; the defaults are what a stabiliser without that part does."""
+
+    name = ""
+    needs_surface = False
+    fields = ()
+
+    def forces(self):
+        """Force terms this stabiliser adds to the acceleration, in order."""
+        return ()
+
+    def apply(self, ctx):
+        """Once per configuration, after the scheme's configuration work."""
