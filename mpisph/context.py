@@ -13,24 +13,26 @@ reads the solver itself. It holds:
 - ``correction_matrices()``: B of 000_ Eq. 24 on this configuration, computed once.
 """
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from . import tensors
 from .correction import correction_matrix
 
 
+@dataclass
 class StepContext:
     """One neighbour configuration and the services the parts of a step share."""
 
-    def __init__(self, particles, start, nbr, xc, kernel, halo, workspace):
-        self.particles = particles
-        self.start = start
-        self.nbr = nbr
-        self.xc = xc
-        self.kernel = kernel
-        self.halo = halo
-        self.workspace = workspace
-        self._B = None
+    particles: object
+    start: np.ndarray
+    nbr: np.ndarray
+    xc: np.ndarray
+    kernel: object
+    halo: object
+    workspace: object
+    _B: np.ndarray | None = field(default=None, repr=False)
 
     def refresh(self, names):
         """Send the current values of the fields ``names`` of the owned particles to their ghosts."""
