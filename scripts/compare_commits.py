@@ -3,7 +3,7 @@ final frames field by field: a refactoring that claims to leave the physics alon
 with the same bits. With ``--throughput``, compare their speed instead.
 
     .venv/bin/python scripts/compare_commits.py [--base REF] [--ranks N] [--only RUN ...]
-    .venv/bin/python scripts/compare_commits.py --throughput [--base REF] [--repeat 3]
+    .venv/bin/python scripts/compare_commits.py --throughput [--base REF] [--repeat 3] [--cases CASE ...]
 
 The base commit's tree is exported with ``git archive`` into ``runs/compare/<sha>/`` (kept,
 so numba's cache is reused next time) and run with that tree first on ``PYTHONPATH``; the
@@ -98,12 +98,13 @@ def compare(a, b):
     return out
 
 
-def throughput(sha, tree, repeat):
+def throughput(sha, tree, repeat, cases):
     """Best-of-``repeat`` particle-steps/s/core of both trees, runs interleaved."""
     print(f"throughput at {sha} and of the working tree, best of {repeat}, runs alternating\n")
     print("| case | ranks | before | after | after / before |")
     print("|---|---|---|---|---|")
-    for case, (spacing, t_end, warm_up, *_) in BENCHMARKS.items():
+    for case in cases:
+        spacing, t_end, warm_up, *_ = BENCHMARKS[case]
         for root in (tree, ROOT):
             run_case(case, 1, warm_up, root=root)  # numba compilation
         args = ["--set", spacing, "--t-end", t_end, "--output-interval", t_end]
@@ -123,10 +124,12 @@ def main():
     ap.add_argument("--only", nargs="*", choices=list(RUNS), default=list(RUNS))
     ap.add_argument("--throughput", action="store_true", help="compare speed, not bits")
     ap.add_argument("--repeat", type=int, default=3, help="with --throughput: runs per tree and rank count")
+    ap.add_argument("--cases", nargs="*", choices=list(BENCHMARKS), default=list(BENCHMARKS),
+                    help="with --throughput: the cases of benchmarks/throughput.py to run")
     a = ap.parse_args()
     sha, tree = export(a.base)
     if a.throughput:
-        throughput(sha, tree, a.repeat)
+        throughput(sha, tree, a.repeat, a.cases)
         return
     print(f"final frames at {sha} against the working tree, {a.ranks} ranks, walls included\n")
     print("| run | steps | fields with the same bits | fields that differ |")
