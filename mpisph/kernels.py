@@ -51,16 +51,16 @@ class Kernel:
 
     def value(self, r):
         """W(r) for an array of distances (any shape)."""
-        r = np.asarray(r, dtype=float)
-        out = np.empty(r.size)
-        _values(r.ravel(), self.params, False, out)
-        return out.reshape(r.shape)
+        return self._on_array(r, False)
 
     def derivative(self, r):
         """dW/dr (non-positive) for an array of distances (any shape)."""
+        return self._on_array(r, True)
+
+    def _on_array(self, r, derivative):
         r = np.asarray(r, dtype=float)
         out = np.empty(r.size)
-        _values(r.ravel(), self.params, True, out)
+        _values(r.ravel(), self.params, derivative, out)
         return out.reshape(r.shape)
 
     def lattice_sum(self, dp):

@@ -28,7 +28,7 @@ class Scheme:
     acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
     observable_names = ()  # its columns of diagnostics.csv
 
-    def __init__(self, case):
+    def __init__(self, case, kernel):
         self.material = case.material
         self.dim = case.dim
 

@@ -152,7 +152,7 @@ class Simulation:
     def run(self):
         t_end = self.params["t_end"]
         interval = self.params["output_interval"]
-        single = self.params["time_stepping"] == "single"
+        single = self.parts.criteria.single
         wall0, t0, step0 = wallclock.perf_counter(), self.t, self.step
         if self.step == 0:
             self._configure_geometry()  # the surface classes of the first frame

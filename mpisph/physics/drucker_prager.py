@@ -114,7 +114,8 @@ def return_mapping(sig, alpha_phi, k_c, dev):
 
 
 @njit(cache=True)
-def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, diffusion, K, G, alpha_phi, alpha_psi, k_c, dt, stress, plastic_strain):
+def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, diffusion, K, G, alpha_phi,
+                          alpha_psi, k_c, dt, stress, plastic_strain):
     """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain, with
     L of Eq. 23 from ``velocity_gradient`` particle by particle."""
     L = np.empty((3, 3))

@@ -206,7 +206,7 @@ class RiemannFluid(Scheme):
     acoustic_cfl = 0.6  # 001_ Eq. 11
 
     def __init__(self, case, kernel):
-        super().__init__(case)
+        super().__init__(case, kernel)
         self.gravity = case.gravity
         self.density_reinit = case.density_reinit
         self.lattice_sum = kernel.lattice_sum(case.dp)

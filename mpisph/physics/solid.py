@@ -271,7 +271,7 @@ class SolidScheme(Scheme):
     )
 
     def __init__(self, case, kernel):
-        super().__init__(case)
+        super().__init__(case, kernel)
         self.gravity = case.gravity
 
     def forces(self):

@@ -1,12 +1,10 @@
 """A fluid square at rest in free space, pushed by a body force the case declares itself (tests the force-term route)."""
 
 import numpy as np
-from numba import njit
 
 from mpisph.case import Body, Case, Fluid, Param
-from mpisph.forces import ForceTerm
+from mpisph.forces import ForceTerm, add_uniform
 from mpisph.geometry import box
-from mpisph.particles import MOVING
 
 PARAMS = {
     "dp": Param(0.01, "m", "particle spacing", positive=True),
@@ -18,17 +16,8 @@ PARAMS = {
 }
 
 
-@njit
-def push(n, kind, acceleration, acc):
-    """acc_i += acceleration for the moving particles."""
-    for i in range(n):
-        if kind[i] == MOVING:
-            for a in range(acc.shape[1]):
-                acc[i, a] += acceleration[a]
-
-
 class Push(ForceTerm):
-    """A constant body force, evaluated at every time step."""
+    """A constant body force, evaluated at every time step (not frozen, unlike gravity)."""
 
     name = "push"
 
@@ -37,7 +26,7 @@ class Push(ForceTerm):
 
     def add(self, ctx, acc):
         pa = ctx.particles
-        push(pa.n_owned, pa.kind, self.acceleration, acc)
+        add_uniform(pa.n_owned, pa.kind, self.acceleration, acc)
 
 
 def setup(p):
