@@ -1,9 +1,7 @@
 """A fluid square at rest in free space, pushed by a body force the case declares itself (tests the force-term route)."""
 
-import numpy as np
-
 from mpisph.case import Body, Case, Fluid, Param
-from mpisph.forces import ForceTerm, add_uniform
+from mpisph.forces import UniformAcceleration
 from mpisph.geometry import box
 
 PARAMS = {
@@ -16,17 +14,11 @@ PARAMS = {
 }
 
 
-class Push(ForceTerm):
+class Push(UniformAcceleration):
     """A constant body force, evaluated at every time step (not frozen, unlike gravity)."""
 
     name = "push"
-
-    def __init__(self, acceleration):
-        self.acceleration = np.asarray(acceleration, dtype=float)
-
-    def add(self, ctx, acc):
-        pa = ctx.particles
-        add_uniform(pa.n_owned, pa.kind, self.acceleration, acc)
+    frozen = False
 
 
 def setup(p):
