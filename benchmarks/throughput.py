@@ -6,7 +6,9 @@ and each figure as a fraction of this machine's ceiling.
 
 Cases: the 2D and 3D dam breaks (fluid, dual time stepping; 140k particles
 in 3D, as PySPH's 143k), the 2D column collapse and the 3D cube failure
-(Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4). Each
+(Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4), and the
+mu(I) incline (004_ Table 2 material, 100 layers of 1000 particles, single
+time stepping). Each
 run is timed by the solver itself (wall time of the step loop, numba
 compilation excluded by a warm-up run), best of ``--repeat`` runs: on a shared
 virtual machine single runs scatter by up to 10 %, the best of three by about 2 %.
@@ -24,7 +26,9 @@ configuration times configurations per step:
 - Drucker-Prager with UTVF: per step stress acceleration, velocity gradient,
   continuity and stress diffusion (4); per configuration the neighbour
   search, position divergence, surface classes, correction matrix and the
-  UTVF shift (5).
+  UTVF shift (5);
+- mu(I): per step strain rate, momentum and continuity (3); per
+  configuration the neighbour search and the state (2).
 """
 
 import argparse
@@ -32,13 +36,15 @@ import argparse
 from _run import run_case
 from ceiling import ceiling
 
-# case: (spacing giving >= 100k moving particles, simulated time per run, warm-up arguments,
+# case: (settings giving >= 100k moving particles, simulated time per run, warm-up arguments,
 #        dimension, pair passes per step, pair passes per neighbour configuration)
 BENCHMARKS = {
-    "dam_break_2d": ("dp=0.0044", 0.02, ["--set", "dp=0.05", "--t-end", "0.01"], 2, 2, 2),  # 103k
-    "column_collapse_2d": ("dp=0.00044", 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"], 2, 4, 5),  # 103k
-    "cube_failure_3d": ("dp=0.04", 0.01, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 4, 5),  # 125k
-    "dam_break_3d": ("dp=0.0239", 0.006, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 2, 2),  # 140k
+    "dam_break_2d": (("dp=0.0044",), 0.02, ["--set", "dp=0.05", "--t-end", "0.01"], 2, 2, 2),  # 103k
+    "column_collapse_2d": (("dp=0.00044",), 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"], 2, 4, 5),  # 103k
+    "cube_failure_3d": (("dp=0.04",), 0.01, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 4, 5),  # 125k
+    "dam_break_3d": (("dp=0.0239",), 0.006, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 2, 2),  # 140k
+    "inclined_plane": (("dp=0.001", "columns=1000"), 5e-6,
+                       ["--set", "dp=0.01", "--set", "columns=20", "--t-end", "2e-4"], 2, 3, 2),  # 100k
 }
 
 
@@ -49,13 +55,13 @@ def main():
     a = ap.parse_args()
     ceilings = {}
     for case in a.cases:
-        spacing, t_end, warm_up, dim, per_step, per_configuration = BENCHMARKS[case]
+        settings, t_end, warm_up, dim, per_step, per_configuration = BENCHMARKS[case]
         if dim not in ceilings:
             ceilings[dim] = ceiling(dim=dim)[0]
             print(f"ceiling {dim}D: {ceilings[dim]:.4g} particle-passes/s on one core  "
                   f"[.venv/bin/python benchmarks/ceiling.py --dim {dim}]", flush=True)
         run_case(case, 1, warm_up)  # compile the numba kernels once
-        args = ["--set", spacing, "--t-end", t_end, "--output-interval", t_end]
+        args = [*(w for s in settings for w in ("--set", s)), "--t-end", t_end, "--output-interval", t_end]
         rates = {}
         for ranks in (1, 2):
             r = max((run_case(case, ranks, args) for _ in range(a.repeat)), key=lambda run: run.rate)
@@ -63,7 +69,8 @@ def main():
             passes = per_step + per_configuration * r.configurations / r.steps
             bound = ceilings[dim] / passes
             phases = ", ".join(f"{k} {v:.0f}%" for k, v in r.shares.items())
-            print(f"{case} {spacing} ranks={ranks}: {r.rate:.4g} particle-steps/s/core (best of {a.repeat}), "
+            print(f"{case} {' '.join(settings)} ranks={ranks}: {r.rate:.4g} particle-steps/s/core "
+                  f"(best of {a.repeat}), "
                   f"{r.particles} particles; "
                   f"{passes:.2f} pair passes/step, {100 * r.rate / bound:.0f}% of the ceiling's "
                   f"{bound:.3g}  ({phases})  [{r.command}]", flush=True)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .errors import InputError
 from .kernels import KERNELS
-from .materials import DruckerPrager, ElasticSolid, Fluid  # noqa: F401  (case files import them from here)
+from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .stabilisers import stabiliser_names
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
@@ -108,6 +108,7 @@ class Wall:
     normal: np.ndarray
     velocity: np.ndarray | None = None  # (n, dim); zero if None
     slip: bool = False
+    distance: np.ndarray | None = None  # (n,) distance behind the wall surface (Morris walls, 004_ Eq. 34)
 
 
 @dataclass
@@ -117,7 +118,7 @@ class Case:
     dim: int
     domain: tuple  # (lo, hi) corners; a particle leaving it stops the run
     dp: float
-    material: object  # Fluid, ElasticSolid or DruckerPrager (materials.py)
+    material: object  # Fluid, ElasticSolid, DruckerPrager or MuIGranular (materials.py)
     scheme: str  # a name of mpisph.schemes.SCHEMES that takes the material
     bodies: list
     walls: list = field(default_factory=list)
@@ -128,7 +129,9 @@ class Case:
     stabilisers: tuple | str = ()  # names of mpisph.stabilisers.STABILISERS, in order ("a,b" or "none" too)
     forces: list = field(default_factory=list)  # the case's own force terms (forces.ForceTerm), last in the sum
     integrator: str = "position_verlet"  # a name of mpisph.integrators.INTEGRATORS
+    scheme_options: dict = field(default_factory=dict)  # the scheme's discretisation options (Scheme.options)
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
+    warnings: list = field(default_factory=list)  # one-line warnings printed when a run starts
     probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
 
     def __post_init__(self):

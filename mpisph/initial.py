@@ -26,7 +26,7 @@ def particles_from_case(comm, case, parts):
     """This rank's share of the particles of ``case``, with the fields of ``parts`` (parts.py)."""
     dim, dp = case.dim, case.dp
     m = case.material
-    xs, kinds, vs, ps, normals, stresses = [], [], [], [], [], []
+    xs, kinds, vs, ps, normals, stresses, distances = [], [], [], [], [], [], []
     for b in case.bodies:
         n = len(b.x)
         xs.append(b.x)
@@ -43,6 +43,7 @@ def particles_from_case(comm, case, parts):
         else:
             ps.append(np.zeros(n))
         normals.append(np.zeros((n, dim)))
+        distances.append(np.zeros(n))
     for wl in case.walls:
         n = len(wl.x)
         xs.append(wl.x)
@@ -51,6 +52,7 @@ def particles_from_case(comm, case, parts):
         ps.append(np.zeros(n))
         stresses.append(np.zeros((n, 6)))
         normals.append(wl.normal)
+        distances.append(np.full(n, np.nan) if wl.distance is None else wl.distance)
     kind = np.concatenate(kinds)
     p = np.concatenate(ps)
     material = (kind == MOVING) | (kind == CLAMPED)
@@ -65,6 +67,7 @@ def particles_from_case(comm, case, parts):
         "mass": rho * dp**dim,
         "normal": np.concatenate(normals),
         "stress": np.concatenate(stresses),
+        "wall_distance": np.concatenate(distances),
     }
     return _share(comm, arrays, parts.fields, dim)
 
@@ -72,6 +75,7 @@ def particles_from_case(comm, case, parts):
 def particles_from_frame(comm, frame, parts):
     """Particles (walls included) from ``read_frame(path, walls=True)``; symmetric tensors that a
     frame of format 1 holds as (3, 3) are packed (tensors.py)."""
-    arrays = {k: (packed(v) if v.ndim == 3 and v.shape[1] == v.shape[2] else v)
+    symmetric = {f.name for f in parts.fields if f.shape in (("sym",), (6,))}
+    arrays = {k: (packed(v) if k in symmetric and v.ndim == 3 else v)
               for k, v in frame.items() if isinstance(v, np.ndarray)}
     return _share(comm, arrays, parts.fields, frame["dim"])

@@ -75,6 +75,7 @@ class Particles:
         self.arrays = arrays
         self.n_owned = n_owned
         self._buffers = dict(arrays)
+        self._columns = {f.name: int(np.prod(_shape(f, dim), dtype=np.int64)) for f in self.fields}
 
     @classmethod
     def empty(cls, dim, fields, n=0):
@@ -104,16 +105,15 @@ class Particles:
 
     def width(self, names):
         """Number of float64 columns the named fields take in a packed row."""
-        return sum(int(np.prod(_shape(self.field(n), self.dim), dtype=np.int64)) for n in names)
+        return sum(self._columns[n] for n in names)
 
     def pack(self, names, index):
         """Rows ``index`` of the named fields as one (len(index), width) float64 array."""
         out = np.empty((len(index), self.width(names)))
         col = 0
         for name in names:
-            a = self.arrays[name]
-            w = int(np.prod(a.shape[1:], dtype=np.int64))
-            out[:, col:col + w] = a[index].reshape(len(index), w)
+            w = self._columns[name]
+            out[:, col:col + w] = self.arrays[name][index].reshape(len(index), w)
             col += w
         return out
 
@@ -123,7 +123,7 @@ class Particles:
         n = len(rows)
         for name in names:
             a = self.arrays[name]
-            w = int(np.prod(a.shape[1:], dtype=np.int64))
+            w = self._columns[name]
             a[start:start + n] = rows[:, col:col + w].reshape((n,) + a.shape[1:])
             col += w
 

@@ -24,6 +24,11 @@ class Progress:
         self._say(f"mpisph: case {sim.params['case']}, {self.n_total} moving particles, "
                   f"{self.comm.size} rank(s), t = {sim.t:g} s to {sim.params['t_end']:g} s, "
                   f"frames in {sim.out_dir}")
+        for line in sim.parts.scheme.report():
+            self._say(line)
+        if self.comm.rank == 0:
+            for line in sim.case.warnings:
+                print(f"mpisph: warning: {line}", file=sys.stderr, flush=True)
 
     def __call__(self, sim, wall, t0, step0, at_frame):
         now = wallclock.perf_counter()

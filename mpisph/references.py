@@ -59,3 +59,42 @@ def beam_period(L=0.2, H=0.02, rho0=1000.0, E=2.0e6, nu=0.3975, kL=1.875):
     """First period 2 pi / omega of the cantilever, omega^2 = E H^2 k^4 / (12 rho0 (1 - nu^2)) (000_ Eq. 47)."""
     k = kL / L
     return 2.0 * np.pi / np.sqrt(E * H**2 * k**4 / (12.0 * rho0 * (1.0 - nu**2)))
+
+
+# 004_ Table 1: constitutive parameters of the mu(I) law (friction angles in degrees, d in m).
+# Glass beads and 0.8 mm sand after GDR MiDi (2004); 0.4 mm sand (d = 0.32 mm in the collapses of
+# Lube et al. 2004) with I_0 from 004_ Sec. 2.1.
+MU_I_MATERIALS = {
+    "glass_beads": {"mu_s_deg": 20.90, "mu_2_deg": 32.76, "I_0": 0.279, "d": 0.5e-3},
+    "sand_0.8mm": {"mu_s_deg": 27.00, "mu_2_deg": 43.40, "I_0": 1.09, "d": 0.8e-3},
+    "sand_0.4mm": {"mu_s_deg": 30.50, "mu_2_deg": 51.30, "I_0": 2.65, "d": 0.32e-3},
+}
+
+# 004_ Table 2: the inclined plane run; eta_max is the paper's value of Eq. 53 at tau_0.
+INCLINED_PLANE_TABLE_2 = {"H": 0.1, "theta": 25.0, "rho_s0": 800.0, "K_t": 1.5e-5, "tau_0": 190.0, "m_0": 1.0,
+                          "eta_max": 190.3, "N": 800, "dp": 5e-3, "h": 6.5e-3}
+
+
+def inclined_plane_velocity(material, theta_deg, H, g, z):
+    """Steady uniform velocity u(z) at height z above the bed of a mu(I) layer of depth H on a
+    slope of theta degrees (004_ Sec. 5.1):
+
+        u(z) = (2 I_u / 3 d) sqrt(phi_u g cos(theta)) (H^(3/2) - (H - z)^(3/2)),
+
+    from gamma_dot = I_u sqrt(p / rho_s) / d with the hydrostatic p = phi_u rho_s g cos(theta) (H - z)
+    and the uniform I_u of mu(I_u) = tan(theta). Eq. 56 prints squares instead of the 3/2 powers
+    that this integration gives. Grains taken incompressible (rho_s = rho_s0, d = d0)."""
+    I_u, phi_u = material.uniform_flow(theta_deg)
+    scale = 2.0 * I_u / (3.0 * material.d0) * np.sqrt(phi_u * g * np.cos(np.radians(theta_deg)))
+    return scale * (H**1.5 - (H - np.asarray(z, dtype=float)) ** 1.5)
+
+
+def inclined_plane_surface_velocity(material, theta_deg, H, g):
+    """u(H) of ``inclined_plane_velocity``."""
+    return float(inclined_plane_velocity(material, theta_deg, H, g, H))
+
+
+def inclined_plane_pressure(material, theta_deg, H, g, z):
+    """Hydrostatic pressure phi_u rho_s0 g cos(theta) (H - z) of the steady layer (004_ Fig. 7)."""
+    _, phi_u = material.uniform_flow(theta_deg)
+    return phi_u * material.rho_s0 * g * np.cos(np.radians(theta_deg)) * (H - np.asarray(z, dtype=float))

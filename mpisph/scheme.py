@@ -16,6 +16,8 @@ large a time step it allows. It sees the step only through a ``StepContext``
 
 import math
 
+from .errors import InputError
+
 
 class Scheme:
     """Base of every scheme; the defaults are what a scheme without that part does."""
@@ -27,10 +29,20 @@ class Scheme:
     needs_surface = False  # free-surface classes every configuration (surface.py)
     acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
     observable_names = ()  # its columns of diagnostics.csv
+    options = {}  # the discretisation options a case may set (Case.scheme_options) and their defaults
 
     def __init__(self, case, kernel):
         self.material = case.material
         self.dim = case.dim
+        unknown = sorted(set(case.scheme_options) - set(self.options))
+        if unknown:
+            takes = ", ".join(self.options) or "none"
+            raise InputError(f"scheme {self.name} has no option {unknown[0]!r} (it takes: {takes})")
+        self._options = {**self.options, **case.scheme_options}
+
+    def option(self, name):
+        """The value of option ``name``: the case's, else the default."""
+        return self._options[name]
 
     def initial_density(self, pressure):
         """Density of the material particles that gives ``pressure``."""
@@ -67,6 +79,10 @@ class Scheme:
     def observables(self, pa, n):
         """{column: sum over the owned particles [0, n)} for ``observable_names``."""
         return {}
+
+    def report(self):
+        """Lines for the start of a run: derived constants a user should see."""
+        return ()
 
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles for frames."""

@@ -2,15 +2,17 @@
 
 - ``riemann_fluid``: weakly compressible fluid, Riemann solver (000_ Sec. 3, 001_);
 - ``riemann_elastic``: elastic solid, Riemann SPH (000_ Sec. 3.1.2);
-- ``riemann_granular``: Drucker-Prager soil, Riemann SPH (000_ Sec. 3.1.3).
+- ``riemann_granular``: Drucker-Prager soil, Riemann SPH (000_ Sec. 3.1.3);
+- ``mu_i``: dense granular flow, mu(I) rheology, weakly compressible grains (004_).
 """
 
 from .errors import InputError
 from .physics.drucker_prager import RiemannGranular
 from .physics.elastic import RiemannElastic
 from .physics.fluid import RiemannFluid
+from .physics.mu_i import MuIScheme
 
-SCHEMES = {c.name: c for c in (RiemannFluid, RiemannElastic, RiemannGranular)}
+SCHEMES = {c.name: c for c in (RiemannFluid, RiemannElastic, RiemannGranular, MuIScheme)}
 
 
 def make_scheme(case, kernel):

@@ -3,7 +3,10 @@
     .venv/bin/python scripts/validate.py [--ranks 2] [--only NAME ...] [--beam-h-over-dp 30]
 
 Every figure in the page comes from a run made by this script; the command
-of each run is printed in the page beside its result.
+of each run is printed in the page beside its result. A row may carry a sixth
+entry, whether it meets its tolerance; the script exits non-zero, listing them,
+when one does not (the sections written before that check was added carry none:
+their tests assert the same figures).
 """
 
 import argparse
@@ -28,10 +31,12 @@ IMG = DOCS / "img"
 RUNS = ROOT / "runs" / "validation"
 
 
-def run(name, case, args, ranks):
+def run(name, case, args, ranks, blow_up_ok=False):
+    """Frames, diagnostics and the command of one run; with ``blow_up_ok`` a run that stops on a
+    blow-up (exit 3) returns what it wrote, its last frame the one at the blow-up."""
     out = RUNS / name
     r = mpirun_mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks)
-    if r.returncode != 0:
+    if r.returncode != 0 and not (blow_up_ok and r.returncode == 3):
         raise SystemExit(r.stderr)
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}"
     frames = [read_frame(f) for f in list_frames(out)]
@@ -331,10 +336,103 @@ def oscillating_beam(ranks, h_over_dp=30):
     return "Oscillating beam (000_ Sec. 4.3)", cmd, rows, image, note
 
 
+def _layers(frame, dp, name):
+    """(mean height, mean of field ``name``) of the grains in dp-thick layers above the bed."""
+    y = frame["x"][:, 1]
+    k = np.floor(y / dp).astype(int)
+    keep = [j for j in range(k.min(), k.max() + 1) if np.any(k == j)]
+    values = frame[name] if frame[name].ndim == 1 else frame[name][:, 0]
+    return np.array([y[k == j].mean() for j in keep]), np.array([values[k == j].mean() for j in keep])
+
+
+def inclined_plane(ranks):
+    """004_ Sec. 5.1 at H = 0.02 m, H/dp = 10: the viscous form and alpha against the analytical
+    profile; a layer on a level bed against hydrostatic pressure."""
+    from mpisph.case import build_case, load_case_module, resolve_params
+
+    H, dp, theta, g = 0.02, 0.002, 25.0, 9.81
+    small = ["--set", f"H={H}", "--set", f"dp={dp}", "--set", "columns=8", "--set", "m_0=0.2"]
+    module = load_case_module("inclined_plane")
+    material = build_case(module, resolve_params(module, {"H": str(H), "dp": str(dp), "m_0": "0.2"})).material
+    u_s = references.inclined_plane_surface_velocity(material, theta, H, g)
+    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
+    z = np.linspace(0.0, H, 101)
+    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
+    ax[1].plot(references.inclined_plane_pressure(material, theta, H, g, z), z, "k--", label="hydrostatic")
+    ax[2].axhline(0.6 * u_s, color="k", ls="--", lw=0.8, label="analytical mean")
+    rows, cmd = [], None
+    for form, alpha in (("cleary", 0.0), ("cleary", 0.05), ("corrected_stress", 0.0)):
+        label = f"{form}, alpha = {alpha}"
+        frames, diag, shown = run(f"inclined_plane_{form}_{alpha}", "inclined_plane",
+                                  [*small, "--set", f"viscous_form={form}", "--set", f"alpha={alpha}",
+                                   "--t-end", "6", "--output-interval", "0.5"], ranks, blow_up_ok=True)
+        cmd = cmd or shown
+        last = frames[-1]
+        if last["t"] < 6.0 - 1e-9:
+            rows.append((f"{label}: blew up (a particle left the domain) at t [s]", f"{last['t']:.2f}", "6 (end)",
+                         "-", "runs to 6 s", False))
+            last = frames[-2]  # the last regular frame
+        y, u = _layers(last, dp, "v")
+        _, p = _layers(last, dp, "p")
+        top = last["x"][:, 1] > last["x"][:, 1].max() - 0.5 * dp
+        surface = last["v"][top, 0].mean()
+        ua = references.inclined_plane_velocity(material, theta, H, g, np.clip(y, 0.0, H))
+        l2 = np.sqrt(np.mean((u - ua) ** 2) / np.mean(ua**2))
+        ph = references.inclined_plane_pressure(material, theta, H, g, np.clip(y, 0.0, H))
+        mean_u = diag["momentum_x"] / diag["mass"]
+        late = (diag["t"] >= last["t"] - 1.0) & (diag["t"] <= last["t"])
+        trend = np.polyfit(diag["t"][late], mean_u[late], 1)[0]
+        ax[0].plot(u, y, "o-", ms=3, label=label)
+        ax[1].plot(p, y, "o-", ms=3, label=label)
+        ax[2].plot(diag["t"], mean_u, label=label)
+        at = f"{last['t']:g} s"
+        rows += [(f"{label}: surface velocity at {at} [m/s]", f"{surface:.3f}", f"{u_s:.3f}",
+                  f"{100 * (surface / u_s - 1):+.1f}%", "3%", abs(surface / u_s - 1) <= 0.03),
+                 (f"{label}: profile L2 error at {at}", f"{100 * l2:.1f}%", "0", "-", "5%", l2 <= 0.05),
+                 (f"{label}: layer pressure / hydrostatic at {at}", f"{np.mean(p) / np.mean(ph):.3f}", "1",
+                  f"{100 * (np.mean(p) / np.mean(ph) - 1):+.1f}%", "2%", abs(np.mean(p) / np.mean(ph) - 1) <= 0.02),
+                 (f"{label}: mean velocity trend over the last second [m/s^2]", f"{trend:+.3f}", "0 (steady)",
+                  "-", "-")]
+    frames, _, _ = run("inclined_plane_level", "inclined_plane",
+                       [*small, "--set", "theta=0", "--t-end", "1", "--output-interval", "0.5"], ranks)
+    last = frames[-1]
+    y, p = _layers(last, dp, "p")
+    rho = last["mass"].sum() / (8 * dp * H)
+    ratio = np.mean(p) / np.mean(rho * g * (H - y))
+    rows += [("level bed, 1 s: layer pressure / hydrostatic", f"{ratio:.3f}", "1", f"{100 * (ratio - 1):+.1f}%",
+              "2%", abs(ratio - 1) <= 0.02),
+             ("level bed, 1 s: largest speed [m/s]", f"{np.linalg.norm(last['v'], axis=1).max():.1e}", "0", "-", "-")]
+    ax[0].set_xlabel("u [m/s]")
+    ax[0].set_ylabel("height above the bed [m]")
+    ax[1].set_xlabel("p [Pa]")
+    ax[2].set_xlabel("t [s]")
+    ax[2].set_ylabel("mean velocity down the slope [m/s]")
+    for a in ax:
+        a.legend(fontsize=7)
+    image = save(fig, "inclined_plane.png")
+    note = ("An open gap (issue 14): no variant reaches the analytical steady state yet. Layers are dp-thick "
+            "bins of the last frame; the surface velocity is the mean of the top layer; the analytical "
+            "profile takes incompressible grains and no regularisation (m_0 = 0.2 s changes u(H) by +0.5 % "
+            "at this depth). Why, as far as measured: (1) Eq. 27's pair viscosity at h = 1.3 dp delivers "
+            "81 % (2D) of div(eta grad v) on a square lattice, 87 % on sliding square rows, 92 % on sliding "
+            "hexagonal rows (tests/test_mu_i_law.py), and the mu(I) law turns a deficit df of the viscous "
+            "stress into a velocity error of about 8 df near I_u, so the layer runs past the analytical "
+            "state; (2) with the corrected stress the continuity density drifts below the particles' "
+            "volume (the sum of m/rho exceeded the occupied area by 12 % after 5 s), the grain pressure, "
+            "which changes by 667 Pa per 1 % of density, is lost and the flow runs away later; (3) with "
+            "dual time stepping (a configuration kept for 0.25 h/|v|) the bulk dilates within 1.5 s for "
+            "either form; (4) with alpha = 0.05 the layer holds a plateau at a mean speed of 0.47 m/s (68 % "
+            "of the analytical mean) from 2.3 s to 4.2 s, then jumps to 0.85 m/s as the square rows "
+            "rearrange: the result depends on the particle arrangement, as (1) predicts. The paper's "
+            "Table 2 run (H = 0.1 m, 800 particles, m_0 = 1 s) needs about 1.3 million steps and was not run.")
+    return "Inclined plane (004_ Sec. 5.1)", cmd, rows, image, note
+
+
 VALIDATIONS = {"elliptical_drop": elliptical_drop, "taylor_green": taylor_green, "dam_break_2d": dam_break,
                "lid_driven_cavity": cavity, "rotating_square_patch": rotating_patch,
                "oscillating_beam": oscillating_beam,
-               "column_collapse_2d": column_collapse, "cohesive_failure_2d": cohesive_failure}
+               "column_collapse_2d": column_collapse, "cohesive_failure_2d": cohesive_failure,
+               "inclined_plane": inclined_plane}
 MARK = "<!-- section: {} -->"
 
 
@@ -348,10 +446,12 @@ def main():
     IMG.mkdir(parents=True, exist_ok=True)
     page = DOCS / "VALIDATION.md"
     sections = _existing_sections(page)
+    misses = []
     for name in a.only or VALIDATIONS:
         extra = {"h_over_dp": a.beam_h_over_dp} if name == "oscillating_beam" else {}
         title, cmd, rows, image, note = VALIDATIONS[name](a.ranks, **extra)
-        table = "\n".join(f"| {' | '.join(r)} |" for r in rows)
+        misses += [f"{title}: {r[0]} = {r[1]} (tolerance {r[4]})" for r in rows if len(r) > 5 and not r[5]]
+        table = "\n".join(f"| {' | '.join(r[:5])} |" for r in rows)
         sections[name] = (f"{MARK.format(name)}\n## {title}\n\n`{cmd}`\n\n"
                           f"| quantity | mpisph | reference | error | tolerance |\n"
                           f"|---|---|---|---|---|\n{table}\n\n{note + chr(10) + chr(10) if note else ''}"
@@ -361,6 +461,8 @@ def main():
             f"{a.ranks} ranks; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
             "`tests/test_validation.py` and `tests/test_validation_solids.py` assert the same comparisons.\n\n")
     page.write_text(head + "\n".join(sections[k] for k in VALIDATIONS if k in sections))
+    if misses:
+        raise SystemExit("outside tolerance:\n  " + "\n  ".join(misses))
 
 
 def _existing_sections(page):

@@ -143,10 +143,12 @@ def test_blow_up_names_step_time_rank_particle(tmp_path):
     ('scheme="riemann_fluid"', 'scheme="riemann_fluid", stabilisers="tvf,artificial"',
      ["stabiliser must be none or one of", "'artificial'"]),
     ('scheme="riemann_fluid"', 'scheme="riemann_fluid", integrator="euler"', ["integrator must be one of"]),
+    ('scheme="riemann_fluid"', 'scheme="riemann_fluid", scheme_options={"alpha": 0.1}',
+     ["scheme riemann_fluid has no option 'alpha'"]),
 ])
 def test_parts_that_do_not_exist_or_fit(tmp_path, old, new, fragments):
-    """A case naming an unknown scheme, stabiliser or integrator, or a scheme for another
-    material, is refused with one line."""
+    """A case naming an unknown scheme, stabiliser, integrator or scheme option, or a scheme for
+    another material, is refused with one line."""
     src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "elliptical_drop.py")).read()
     assert old in src
     (tmp_path / "drop.py").write_text(src.replace(old, new))

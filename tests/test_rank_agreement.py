@@ -16,8 +16,11 @@ CASES = {
     "oscillating_beam": (["--set", "H_over_dp=5", "--t-end", "0.012", "--output-interval", "0.006"], 0.6),
     "dam_break_3d": (["--set", "dp=0.1", "--t-end", "0.25", "--output-interval", "0.125"], 4.3),
     "cube_failure_3d": (["--set", "dp=0.2", "--t-end", "0.8", "--output-interval", "0.4"], 5.6),
+    # periodic along the slabs' axis
+    "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
+                        "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
 }
-FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "plastic_strain")
+FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "plastic_strain", "eta", "rho_s")
 
 
 def final_state(out):

@@ -8,5 +8,6 @@ fields it needs itself.
 """
 
 from .position_verlet import PositionVerlet
+from .symplectic_verlet import SymplecticVerlet
 
-INTEGRATORS = {c.name: c for c in (PositionVerlet,)}
+INTEGRATORS = {c.name: c for c in (PositionVerlet, SymplecticVerlet)}

@@ -6,7 +6,8 @@ and the time step within it is dt_ac = CFL h / (c0 + |v|max) with the scheme's
 CFL number (0.6 for fluids, 001_ Eq. 11; 0.4 for solids). With a single
 criterion the configuration is rebuilt every step of dt = 0.4 h / (c0 + |v|max)
 (000_ Eq. 38). A scheme's own limit (``Scheme.time_step_limit``: a viscous or
-force criterion) bounds both.
+force criterion) bounds the time step; with dual criteria the configuration
+is still kept for an advection step, over several of the smaller time steps.
 
 Every limit decreases with |v|max, and rounding is monotone, so the minimum of
 the ranks' limits equals the limit of the largest speed to the bit.
@@ -39,4 +40,4 @@ class TimeStepCriteria:
             dt = min(CFL_SINGLE * h / (c0 + vmax), extra)
             return np.array([dt, dt])
         advection = CFL_ADVECTION * h / max(vmax, scheme.kinematic_viscosity / h, self.u_ref)
-        return np.array([min(scheme.acoustic_cfl * h / (c0 + vmax), extra), min(advection, extra)])
+        return np.array([min(scheme.acoustic_cfl * h / (c0 + vmax), extra), advection])

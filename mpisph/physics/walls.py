@@ -3,12 +3,16 @@
 A wall particle j has a wall velocity v_w and an inward normal n_w. In the
 pairwise sums a material particle i sees it with a mirrored velocity: the
 whole relative velocity mirrored for a no-slip wall (v_j = 2 v_w - v_i),
-only its normal part for a free-slip wall. Densities, pressures and stresses
-of the partner are chosen by each material (fluid: hydrostatic pressure
-extrapolation; solids: the wall takes the stress of particle i).
+only its normal part for a free-slip wall. The ghost-particle walls of
+Morris et al. that the mu(I) scheme uses (004_ Eqs. 34-36) scale the relative
+velocity by beta = min(beta_max, 1 + d_j/d_i) instead of 2, from the
+distances of the two particles to the wall surface. Densities, pressures and
+stresses of the partner are chosen by each scheme (fluid: hydrostatic
+pressure extrapolation; solids and mu(I): the wall takes the state of
+particle i).
 
-``wall_relative_velocity`` is the one place that mirrors a wall partner's
-velocity. Pair loops compute the plain difference v_i - v_j and call it only
+``wall_relative_velocity`` (mirror) and ``morris_relative_velocity`` are the
+only places that give a wall partner's velocity. Pair loops compute the plain difference v_i - v_j and call it only
 when j is a wall particle, with the test written in the loop. That keeps the
 common path straight-line code: moving the test and the call into one
 helper, inlined or not, makes the loops slower: continuity of the 2D column
@@ -40,6 +44,30 @@ def wall_relative_velocity(i, j, v, kind, normal):
         u2 = 2.0 * (v[i, 2] - v[j, 2]) if v.shape[1] == 3 else 0.0
     else:
         vn = 2.0 * wall_relative_normal(i, j, v, normal)
+        u0 = vn * normal[j, 0]
+        u1 = vn * normal[j, 1]
+        u2 = vn * normal[j, 2] if v.shape[1] == 3 else 0.0
+    return u0, u1, u2
+
+
+@njit(cache=True)
+def morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max):
+    """v_i - v_j as i sees wall particle j in the ghost-particle walls of Morris et al. (004_
+    Eqs. 34-36), three scalars (the third is 0 in 2D): beta (v_i - v_w) with
+    beta = min(beta_max, 1 + d_j/d_i), d_j the wall particle's distance behind the wall surface
+    (``wall_distance``) and d_i = (x_i - x_j).n_w - d_j the material particle's in front of it
+    (beta_max when i is on or behind the surface); only the normal part for a free-slip wall."""
+    d_j = wall_distance[j]
+    d_i = -d_j
+    for a in range(xc.shape[1]):
+        d_i += (xc[i, a] - xc[j, a]) * normal[j, a]
+    beta = min(beta_max, 1.0 + d_j / d_i) if d_i > 0.0 else beta_max
+    if kind[j] == WALL:
+        u0 = beta * (v[i, 0] - v[j, 0])
+        u1 = beta * (v[i, 1] - v[j, 1])
+        u2 = beta * (v[i, 2] - v[j, 2]) if v.shape[1] == 3 else 0.0
+    else:
+        vn = beta * wall_relative_normal(i, j, v, normal)
         u0 = vn * normal[j, 0]
         u1 = vn * normal[j, 1]
         u2 = vn * normal[j, 2] if v.shape[1] == 3 else 0.0

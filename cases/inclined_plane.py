@@ -1,0 +1,83 @@
+"""Uniform granular flow down an inclined plane, mu(I) rheology, periodic along the slope (004_ Sec. 5.1).
+
+A layer of glass beads (004_ Table 1, first column) of depth H rests on a rough
+bed tilted by theta and is released from rest; x runs down the slope and is
+periodic, y is normal to the bed, and gravity is tilted instead of the
+geometry. The defaults are 004_ Table 2 (H = 0.1 m, theta = 25 deg,
+rho_s0 = 800 kg/m^3, K_t = 1.5e-5 1/Pa, tau_0 = 190 Pa, m_0 = 1 s,
+dp = 5 mm, h = 6.5 mm, 40 columns: N = 800). The steady profile is
+references.inclined_plane_velocity; 004_ reached it after about 6.5 s.
+"""
+
+import math
+
+import numpy as np
+
+from mpisph.case import Body, Case, MuIGranular, Param, Wall
+from mpisph.geometry import box, support_layers
+from mpisph.references import inclined_plane_surface_velocity
+
+PARAMS = {
+    "H": Param(0.1, "m", "depth of the layer", positive=True),
+    "theta": Param(25.0, "deg", "slope angle"),
+    "dp": Param(0.005, "m", "particle spacing", positive=True),
+    "columns": Param(40, "-", "particles along the periodic slope (its length is columns * dp)", positive=True),
+    "g": Param(9.81, "m/s^2", "gravity", positive=True),
+    "rho_s0": Param(800.0, "kg/m^3", "grain density unconfined (004_ Table 2)", positive=True),
+    "d": Param(0.5e-3, "m", "grain size (glass beads, 004_ Table 1)", positive=True),
+    "mu_s_deg": Param(20.90, "deg", "static friction angle, mu_s = tan (004_ Table 1)"),
+    "mu_2_deg": Param(32.76, "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)"),
+    "I_0": Param(0.279, "-", "reference inertial number (004_ Sec. 2.1)", positive=True),
+    "phi_max": Param(0.6, "-", "volume fraction at rest (Eq. 8)", positive=True),
+    "phi_min": Param(0.5, "-", "lowest volume fraction of the dense regime (Eq. 8)", positive=True),
+    "K_t": Param(1.5e-5, "1/Pa", "grain compressibility (Eq. 41)", positive=True),
+    "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55)", positive=True),
+    "m_0": Param(1.0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
+    "alpha": Param(0.0, "-", "artificial viscosity (Eq. 38; 004_ Fig. 6 also uses 0.05)"),
+    "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
+    "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress divergence",
+                          choices=("cleary", "corrected_stress")),
+    "density_reinit": Param("none", "-", "density reinitialisation by kernel summation (001_ Eq. 8) every "
+                            "configuration", choices=("none", "inner", "free_surface")),
+    "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
+                           "(001_ Eqs. 9-11) keeps a configuration for 0.25 h/|v|, over which the sheared layer "
+                           "dilates and runs away (docs/VALIDATION.md)", choices=("dual", "single")),
+    "t_end": Param(6.5, "s", "simulated end time", positive=True),
+    "output_interval": Param(0.5, "s", "simulated time between frames", positive=True),
+}
+
+
+def setup(p):
+    material = MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=math.tan(math.radians(p.mu_s_deg)),
+                           mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0, K_t=p.K_t, tau_0=p.tau_0,
+                           m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
+    warnings = []
+    u_ref = math.sqrt(p.g * p.H)
+    if math.tan(math.radians(p.theta)) >= material.mu_2:
+        warnings.append(f"tan(theta) = {math.tan(math.radians(p.theta)):.4g} >= mu_2 = {material.mu_2:.4g}: no "
+                        f"steady flow exists, the layer accelerates without bound")
+    elif math.tan(math.radians(p.theta)) > material.mu_s:
+        u_ref = inclined_plane_surface_velocity(material, p.theta, p.H, p.g)
+    length = p.columns * p.dp
+    grains = box((0.0, 0.0), (length, p.H), p.dp, "the layer")
+    layers = support_layers(p.h_factor)
+    depth = (np.arange(layers) + 0.5) * p.dp  # below the bed surface y = 0
+    bed = np.array([(x, -d) for d in depth for x in (np.arange(p.columns) + 0.5) * p.dp])
+    cos, sin = math.cos(math.radians(p.theta)), math.sin(math.radians(p.theta))
+    pressure = material.rho0 * p.g * cos * (p.H - grains[:, 1])
+    return Case(
+        dim=2,
+        domain=((0.0, -layers * p.dp), (length, 2.0 * p.H)),
+        dp=p.dp,
+        material=material,
+        scheme="mu_i",
+        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form},
+        integrator="symplectic_verlet",
+        bodies=[Body("grains", grains, pressure=pressure)],
+        walls=[Wall("bed", bed, np.tile([0.0, 1.0], (len(bed), 1)), distance=np.repeat(depth, p.columns))],
+        gravity=(p.g * sin, -p.g * cos),
+        periodic=(True, False),
+        density_reinit=p.density_reinit,
+        u_ref=u_ref,
+        warnings=warnings,
+    )

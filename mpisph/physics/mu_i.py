@@ -1,0 +1,340 @@
+"""Dense granular flow with the mu(I) rheology (004_): the scheme and its pair loops.
+
+The material is a weakly compressible visco-plastic fluid (mu_i_law.py gives
+its pressure and viscosity). In mpisph's sign convention (r_ij = x_i - x_j,
+grad_i W_ij = W' r_ij / r, W' <= 0, kernels.py), with v_ij = v_i - v_j:
+
+    strain rate    L_i = -sum_j V_j v_ij (x) grad_i W_ij,  eps = (L + L^T)/2,
+                   gamma_dot = sqrt(2 eps:eps)                                 (004_ Eq. 31)
+    continuity     drho_i/dt = sum_j m_j v_ij . grad_i W_ij                    (Eq. 26)
+    momentum       dv_i/dt = g - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij
+                             + sum_j m_j 2 (D + 2) eta_ij (v_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j)
+                                                                               (Eqs. 27, 37)
+    eta_ij         2 eta_i eta_j / (eta_i + eta_j), the harmonic mean (Eq. 37)
+    Pi_ij          -alpha h c0 (v_ij . r_ij) / (rho_bar r^2)                   (Eq. 38)
+
+Eq. 27 prints the factor 8 of the viscous term for its 2D runs: the Cleary /
+Monaghan form reproduces div(eta grad v) with 2 (D + 2), which is 8 in 2D and
+10 in 3D (tests/test_mu_i_law.py checks both on a lattice). Pi_ij is applied to
+approaching and separating pairs alike, as Eq. 38 is printed; it dissipates
+either way (its power is -alpha h c0 m_i m_j (v_ij . r_ij)^2 |W'| / (rho_bar r^3)
+per pair). h_bar and c_bar of Eq. 38 are the one h and the sound speed at rest.
+
+The option ``viscous_form = corrected_stress`` replaces the pair term of Eq.
+27 by the divergence of the viscous stress 2 eta eps, eps from the gradient
+corrected with B of 000_ Eq. 24 (L_i = M_i B_i^T) and the sum
+sum_j m_j (T_i/rho_i^2 + T_j/rho_j^2) grad_i W_ij with T = 2 eta eps B, as the
+solids correct their shear stress (solid.py). It is exact for a quadratic
+velocity on a lattice at h = 1.3 dp, where the pair term of Eq. 27 gives 81 %
+(2D) and 87 % (3D) of div(eta grad v) (tests/test_mu_i_law.py), and the mu(I)
+law magnifies such a deficit about eightfold in the speed of a uniform flow
+(docs/VALIDATION.md). With ``Case.density_reinit`` the density is reset by
+kernel summation (001_ Eq. 8, fluid.py) once per configuration.
+
+Walls are the ghost particles of Morris et al. (Eqs. 34-36, walls.py): a wall
+partner takes the density, pressure and viscosity of particle i and the
+relative velocity beta (v_i - v_w).
+
+The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
+acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
+part as the scheme's ``time_step_limit``. The viscous force is evaluated every
+step, so the advection criterion of 001_ Eq. 10 needs no viscous term here.
+The order of the sub-steps is integrators/symplectic_verlet.py's.
+"""
+
+import numpy as np
+from numba import njit
+
+from ..errors import InputError
+from ..forces import ForceTerm
+from ..kernels import pair_dw
+from ..materials import MuIGranular
+from ..neighbours import pair_difference, pair_offset
+from ..particles import MOVING, Field, is_wall
+from ..scheme import Scheme
+from ..tensors import component
+from .fluid import density_summation
+from .mu_i_law import friction, grain_density_ratio, regularised_viscosity
+from .walls import morris_relative_velocity
+
+VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
+
+
+@njit(cache=True)
+def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, beta_max, B, k, strain, gamma_dot):
+    """eps_i (packed, tensors.py) and gamma_dot_i = sqrt(2 eps_i : eps_i) of the moving particles
+    (004_ Eqs. 6, 31). With B of 000_ Eq. 24 (``B.shape[0] > 0``) the gradient is the
+    corrected L_i = M_i B_i^T, M_i the sum of Eq. 31."""
+    dim = xc.shape[1]
+    corrected = B.shape[0] > 0
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            rho_j = rho[j]
+            if is_wall(kind[j]):  # off the common path
+                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
+                rho_j = rho[i]
+            f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
+            m00 += f * u0 * d0
+            m01 += f * u0 * d1
+            m02 += f * u0 * d2
+            m10 += f * u1 * d0
+            m11 += f * u1 * d1
+            m12 += f * u1 * d2
+            m20 += f * u2 * d0
+            m21 += f * u2 * d1
+            m22 += f * u2 * d2
+        M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
+        norm = 0.0
+        for a in range(dim):
+            for b in range(a, dim):
+                if corrected:
+                    l_ab = l_ba = 0.0
+                    for c in range(dim):
+                        l_ab += M[a][c] * B[i, component(dim, c, b)]
+                        l_ba += M[b][c] * B[i, component(dim, c, a)]
+                else:
+                    l_ab, l_ba = M[a][b], M[b][a]
+                e = 0.5 * (l_ab + l_ba)
+                strain[i, component(dim, a, b)] = e
+                norm += e * e if a == b else 2.0 * e * e
+        gamma_dot[i] = np.sqrt(2.0 * norm)
+
+
+@njit(cache=True)
+def viscous_force_tensor(n, kind, strain, eta, B, T):
+    """T_i = 2 eta_i eps_i B_i, the viscous stress times the correction matrix (not symmetric),
+    of the moving particles."""
+    dim = T.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            for b in range(dim):
+                acc = 0.0
+                for c in range(dim):
+                    acc += strain[i, component(dim, a, c)] * B[i, component(dim, c, b)]
+                T[i, a, b] = 2.0 * eta[i] * acc
+
+
+@njit(cache=True)
+def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
+    """Grain density, pressure and regularised viscosity of the moving particles from their bulk
+    density and strain rate (004_ Eqs. 41-44, 46-47, 55; mu_i_law.py)."""
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        x = grain_density_ratio(rho[i], gamma_dot[i], rho_s[i] / m.rho_s0, dim, m)
+        rho_s[i] = x * m.rho_s0
+        p[i] = (x - 1.0) / m.K_t
+        I = max(0.0, (m.phi_max - rho[i] / rho_s[i]) / (m.phi_max - m.phi_min))
+        eta[i] = regularised_viscosity(p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
+
+
+@njit(cache=True)
+def momentum(n, start, nbr, xc, v, rho, p, eta, T, mass, kind, normal, wall_distance, beta_max, alpha, c0,
+             viscous_factor, k, acc):
+    """acc += the pressure, artificial-viscosity and viscous accelerations (004_ Eqs. 27, 37-38);
+    with ``T`` (``T.shape[0] > 0``) the viscous part is the corrected stress divergence
+    sum_j m_j (T_i/rho_i^2 + T_j/rho_j^2) grad_i W_ij instead of the pair term of Eq. 27."""
+    dim = xc.shape[1]
+    corrected = T.shape[0] > 0
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        a0 = a1 = a2 = 0.0
+        rho_i2 = rho[i] * rho[i]
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            rho_j, p_j, eta_j, tj = rho[j], p[j], eta[j], j
+            if is_wall(kind[j]):  # off the common path
+                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
+                rho_j, p_j, eta_j, tj = rho[i], p[i], eta[i], i
+            rho_j2 = rho_j * rho_j
+            vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
+            pi_ij = -alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))
+            scalar = -(p[i] / rho_i2 + p_j / rho_j2 + pi_ij)
+            if not corrected:
+                eta_sum = eta[i] + eta_j
+                if eta_sum > 0.0:
+                    scalar += viscous_factor * 2.0 * eta[i] * eta_j / eta_sum * vr_r2 / (rho[i] * rho_j)
+            f = mass[j] * pair_dw(k, r, i, j) / r
+            a0 += f * scalar * d0
+            a1 += f * scalar * d1
+            a2 += f * scalar * d2
+            if corrected:
+                for a in range(dim):
+                    t = 0.0
+                    for b in range(dim):
+                        t += (T[i, a, b] / rho_i2 + T[tj, a, b] / rho_j2) * (d0 if b == 0 else d1 if b == 1 else d2)
+                    if a == 0:
+                        a0 += f * t
+                    elif a == 1:
+                        a1 += f * t
+                    else:
+                        a2 += f * t
+        acc[i, 0] += a0
+        acc[i, 1] += a1
+        if dim == 3:
+            acc[i, 2] += a2
+
+
+@njit(cache=True)
+def continuity(n, start, nbr, xc, v, mass, kind, normal, wall_distance, beta_max, k, drho_dt):
+    """drho_i/dt = sum_j m_j v_ij . grad_i W_ij of the moving particles (004_ Eq. 26)."""
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        acc = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            if is_wall(kind[j]):  # off the common path
+                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
+            acc += mass[j] * (u0 * d0 + u1 * d1 + u2 * d2) / r * pair_dw(k, r, i, j)
+        drho_dt[i] = acc
+
+
+@njit(cache=True)
+def viscous_time_step(n, kind, rho, eta, h):
+    """VISCOUS_CFL min_i rho_i h^2 / eta_i over the moving particles (004_ Eq. 39), inf if none
+    is viscous."""
+    best = np.inf
+    for i in range(n):
+        if kind[i] == MOVING and eta[i] > 0.0:
+            best = min(best, VISCOUS_CFL * rho[i] * h * h / eta[i])
+    return best
+
+
+@njit(cache=True)
+def inertial_number_and_friction(n, rho, rho_s, m, I, mu):
+    """I from the volume fraction (Eq. 8) and mu(I) (Eq. 7) for frames."""
+    for i in range(n):
+        I[i] = max(0.0, (m.phi_max - rho[i] / rho_s[i]) / (m.phi_max - m.phi_min)) if rho_s[i] > 0.0 else 0.0
+        mu[i] = friction(I[i], m)
+
+
+class GranularMomentum(ForceTerm):
+    """Pressure, artificial viscosity and mu(I) viscosity in one pair sum (module docstring)."""
+
+    name = "mu_i_momentum"
+
+    def __init__(self, scheme):
+        self.scheme = scheme
+
+    def add(self, ctx, acc):
+        pa, s = ctx.particles, self.scheme
+        momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, s.force_tensors(pa), pa.mass,
+                 pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, s.viscous_factor,
+                 ctx.kernel.params, acc)
+
+
+VISCOUS_FORMS = ("cleary", "corrected_stress")
+
+
+class MuIScheme(Scheme):
+    """mu(I) granular fluid with weakly compressible grains (004_ Secs. 3-4).
+
+    Per configuration: the wall distances on ghosts, and the state (so that the
+    viscous time-step limit sees the current viscosity); per step: strain rate,
+    then grain density, pressure and viscosity (the state), and continuity (the
+    rate). Options (``Case.scheme_options``): ``alpha`` of Eq. 38 (default 0),
+    ``beta_max`` of Eq. 36 (default 1.5, Morris et al.) and ``viscous_form``:
+    ``cleary``, the pair term of Eq. 27 as printed, or ``corrected_stress``, the
+    viscous stress 2 eta eps from the corrected gradient and its divergence with
+    the correction matrix (module docstring).
+    """
+
+    name = "mu_i"
+    materials = (MuIGranular,)
+    acoustic_cfl = 0.5  # 004_ Eq. 39
+    options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary"}
+
+    def __init__(self, case, kernel):
+        super().__init__(case, kernel)
+        self.alpha = self.option("alpha")
+        self.beta_max = self.option("beta_max")
+        if self.option("viscous_form") not in VISCOUS_FORMS:
+            raise InputError(f"scheme mu_i: viscous_form must be one of {', '.join(VISCOUS_FORMS)}, "
+                             f"not {self.option('viscous_form')!r}")
+        self.corrected = self.option("viscous_form") == "corrected_stress"
+        self.viscous_factor = 2.0 * (case.dim + 2)
+        self.h = kernel.h
+        self.params = self.material.params
+        self.density_reinit = case.density_reinit
+        self.lattice_sum = kernel.lattice_sum(case.dp)
+        missing = [w.name for w in case.walls if w.distance is None]
+        if missing:
+            raise InputError(f"scheme mu_i needs the distance of every wall particle to the wall surface "
+                             f"(Wall.distance), which wall {missing[0]!r} lacks")
+        self.fields = (
+            Field("strain", ("sym",), np.float64, "strain-rate tensor eps, packed (tensors.py) [1/s]"),
+            Field("gamma_dot", (), np.float64, "strain-rate modulus sqrt(2 eps:eps) [1/s]"),
+            Field("eta", (), np.float64, "regularised viscosity [Pa s]"),
+            Field("rho_s", (), np.float64, "grain density [kg/m^3]"),
+            Field("wall_distance", (), np.float64, "distance behind the wall surface (walls only) [m]"),
+        )
+        self.state_fields = ("p", "eta")
+        if self.corrected:
+            self.fields += (
+                Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
+                Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
+            self.state_fields = ("p", "T_visc")
+        self._no_T, self._no_B = np.zeros((0, 1, 1)), np.zeros((0, 1))
+
+    def force_tensors(self, pa):
+        """T = 2 eta eps B of the corrected form, an empty array for the form of Eq. 27."""
+        return pa.T_visc if self.corrected else self._no_T
+
+    def initial_density(self, pressure):
+        return self.material.density_at_rest(pressure)
+
+    def forces(self):
+        return (GranularMomentum(self),)
+
+    def configure(self, ctx):
+        pa = ctx.particles
+        ctx.refresh(["wall_distance"])
+        if self.density_reinit != "none":
+            density_summation(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, self.material.rho0,
+                              ctx.kernel.params, self.lattice_sum, self.density_reinit == "free_surface")
+            ctx.refresh(["rho"])
+        self.state(ctx)
+        ctx.refresh(self.state_fields)
+
+    def state(self, ctx):
+        pa = ctx.particles
+        n = pa.n_owned
+        B = ctx.correction_matrices() if self.corrected else self._no_B
+        strain_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
+                    self.beta_max, B, ctx.kernel.params, pa.strain, pa.gamma_dot)
+        granular_state(n, pa.kind, pa.rho, pa.gamma_dot, pa.rho_s, pa.p, pa.eta, self.dim, self.params)
+        if self.corrected:
+            viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, pa.T_visc)
+
+    def rates(self, ctx, dt):
+        pa = ctx.particles
+        continuity(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.kind, pa.normal, pa.wall_distance,
+                   self.beta_max, ctx.kernel.params, pa.drho_dt)
+
+    def time_step_limit(self, ctx):
+        pa = ctx.particles
+        return viscous_time_step(pa.n_owned, pa.kind, pa.rho, pa.eta, self.h)
+
+    def report(self):
+        m = self.material
+        return (f"mu(I): sound speed at rest c0 = {m.c0:.4g} m/s; regularised viscosity at tau_y = tau_0 = "
+                f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",)
+
+    def derived_fields(self, pa, n):
+        I, mu = np.zeros(n), np.zeros(n)
+        inertial_number_and_friction(n, pa.rho[:n], pa.rho_s[:n], self.params, I, mu)
+        return {"inertial_number": I, "friction": mu}
