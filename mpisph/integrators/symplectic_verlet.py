@@ -29,21 +29,17 @@ order over a run), and would cost a second continuity pass per step.
 import numpy as np
 
 from ..particles import Field
+from .position_verlet import PositionVerlet
 from .updates import density_half, drift_half, kick
 
 
-class SymplecticVerlet:
+class SymplecticVerlet(PositionVerlet):
     """One time step of a scheme and its force terms (module docstring)."""
 
     name = "symplectic_verlet"
-    fields = (Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),
-              Field("dv_dt", ("dim",), np.float64, "acceleration of the last step, at its midpoint [m/s^2]"),
-              Field("v_start", ("dim",), np.float64, "velocity at the start of the step [m/s]"))
-
-    def __init__(self, scheme, forces):
-        self.scheme = scheme
-        self.forces = forces
-        self.ghost_fields = list(dict.fromkeys(scheme.state_fields + forces.ghost_fields))
+    fields = PositionVerlet.fields + (
+        Field("dv_dt", ("dim",), np.float64, "acceleration of the last step, at its midpoint [m/s^2]"),
+        Field("v_start", ("dim",), np.float64, "velocity at the start of the step [m/s]"))
 
     def step(self, ctx, dt):
         pa = ctx.particles
