@@ -2,7 +2,8 @@
 
 Per advection step (one neighbour configuration), on every rank:
 
-    1. check       stop on a non-finite value or a particle outside the domain
+    1. check       stop on a non-finite value, a non-positive density or a particle
+                   outside the domain (also when a time-step limit comes out <= 0)
     2. wrap        periodic positions back into the domain
     3. rebalance   new cuts when the imbalance of the work (neighbour pairs of the
                    last configuration) exceeds the threshold
@@ -34,7 +35,7 @@ import numpy as np
 from mpi4py import MPI
 
 from . import surface
-from .blowup import NON_FINITE, first_bad_particle
+from .blowup import PROBLEMS, first_bad_particle
 from .context import StepContext
 from .errors import BlowUp
 from .io.frames import frame_path, write_frame
@@ -113,15 +114,14 @@ class Simulation:
         return self.ctx
 
     def _check(self):
-        """Stop with step, time, rank and particle id on NaN or a lost particle."""
+        """Stop with step, time, rank and particle id on NaN, a non-positive density or a lost particle."""
         pa = self.particles
         lo, hi = self.case.domain
         k, problem = first_bad_particle(pa.n_owned, pa.kind, pa.x, pa.v, pa.rho, np.asarray(lo, float),
                                         np.asarray(hi, float), np.array(self.case.periodic, dtype=np.bool_))
         local = None
         if k >= 0:
-            what = "a non-finite value" if problem == NON_FINITE else "a particle left the domain"
-            local = (int(pa.gid[k]), what, np.round(pa.x[k], 6).tolist())
+            local = (int(pa.gid[k]), PROBLEMS[problem], np.round(pa.x[k], 6).tolist())
         if not self.comm.allreduce(local is not None, op=MPI.LOR):
             return
         for rank, rep in enumerate(self.comm.allgather(local)):
@@ -176,6 +176,8 @@ class Simulation:
                 if last:
                     break
                 dt = self._time_steps()[0]
+                if not dt > 0.0:  # a limit proportional to the density (the viscous one) went <= 0
+                    self._check()
             self.advection_steps += 1
             frame_due = self.t >= t_next_frame
             if frame_due or self.advection_steps % self.params["diagnostics_every"] == 0:
