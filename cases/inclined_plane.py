@@ -51,13 +51,15 @@ def setup(p):
     material = MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=math.tan(math.radians(p.mu_s_deg)),
                            mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0, K_t=p.K_t, tau_0=p.tau_0,
                            m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
+    slope = math.tan(math.radians(p.theta))
     warnings = []
-    u_ref = math.sqrt(p.g * p.H)
-    if math.tan(math.radians(p.theta)) >= material.mu_2:
-        warnings.append(f"tan(theta) = {math.tan(math.radians(p.theta)):.4g} >= mu_2 = {material.mu_2:.4g}: no "
-                        f"steady flow exists, the layer accelerates without bound")
-    elif math.tan(math.radians(p.theta)) > material.mu_s:
+    if slope >= material.mu_2:
+        warnings.append(f"tan(theta) = {slope:.4g} >= mu_2 = {material.mu_2:.4g}: no steady flow exists, the "
+                        f"layer accelerates without bound")
+    try:
         u_ref = inclined_plane_surface_velocity(material, p.theta, p.H, p.g)
+    except ValueError:  # no uniform flow: the layer stays at rest or accelerates
+        u_ref = math.sqrt(p.g * p.H)
     length = p.columns * p.dp
     grains = box((0.0, 0.0), (length, p.H), p.dp, "the layer")
     layers = support_layers(p.h_factor)

@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 
 from .errors import InputError
-from .physics.mu_i_law import MuIParams, residual_viscosity
+from .physics.mu_i_law import MuIParams, friction, residual_viscosity
 
 
 @dataclass
@@ -152,7 +152,7 @@ class MuIGranular:
         """Largest regularised viscosity at yield stress tau_y, eta_0(tau_y, 0) + tau_y m_p(tau_y)
         (004_ Eq. 53, with m_p of Eq. 55 at gamma_dot -> 0) [Pa s]."""
         m = self.params
-        p = tau_y / (self.mu_s + (self.mu_2 - self.mu_s) * m.I_s / (m.I_s + m.I_0))
+        p = tau_y / friction(0.0, m)
         eta_0 = residual_viscosity(p, 0.0, self.rho_s0, self.d0, m)
         return eta_0 + tau_y * (self.m_0 + eta_0 * (tau_y - self.tau_0) / (self.tau_0 * tau_y))
 

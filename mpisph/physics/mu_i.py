@@ -54,7 +54,7 @@ from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import density_summation
-from .mu_i_law import friction, grain_density_ratio, regularised_viscosity
+from .mu_i_law import friction, grain_density_ratio, inertial_number, regularised_viscosity
 from .walls import morris_relative_velocity
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
@@ -132,7 +132,7 @@ def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
         x = grain_density_ratio(rho[i], gamma_dot[i], rho_s[i] / m.rho_s0, dim, m)
         rho_s[i] = x * m.rho_s0
         p[i] = (x - 1.0) / m.K_t
-        I = max(0.0, (m.phi_max - rho[i] / rho_s[i]) / (m.phi_max - m.phi_min))
+        I = inertial_number(rho[i], rho_s[i], m)
         eta[i] = regularised_viscosity(p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
 
 
@@ -218,7 +218,7 @@ def viscous_time_step(n, kind, rho, eta, h):
 def inertial_number_and_friction(n, rho, rho_s, m, I, mu):
     """I from the volume fraction (Eq. 8) and mu(I) (Eq. 7) for frames."""
     for i in range(n):
-        I[i] = max(0.0, (m.phi_max - rho[i] / rho_s[i]) / (m.phi_max - m.phi_min)) if rho_s[i] > 0.0 else 0.0
+        I[i] = inertial_number(rho[i], rho_s[i], m)
         mu[i] = friction(I[i], m)
 
 

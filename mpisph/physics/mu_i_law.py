@@ -71,6 +71,15 @@ def friction(I, m):
 
 
 @njit(cache=True)
+def inertial_number(rho, rho_s, m):
+    """I of a particle from its volume fraction phi = rho/rho_s (004_ Eqs. 8-9):
+    (phi_max - phi)/(phi_max - phi_min), at least 0; 0 where rho_s is not set (<= 0)."""
+    if rho_s <= 0.0:
+        return 0.0
+    return max(0.0, (m.phi_max - rho / rho_s) / (m.phi_max - m.phi_min))
+
+
+@njit(cache=True)
 def _excess(x, rho_star, phi_max, s):
     """F(x) and F'(x) of the module docstring, s = 2/D - 1."""
     u = phi_max - rho_star / x

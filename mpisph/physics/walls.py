@@ -11,8 +11,8 @@ stresses of the partner are chosen by each scheme (fluid: hydrostatic
 pressure extrapolation; solids and mu(I): the wall takes the state of
 particle i).
 
-``wall_relative_velocity`` (mirror) and ``morris_relative_velocity`` are the
-only places that give a wall partner's velocity. Pair loops compute the plain difference v_i - v_j and call it only
+``wall_relative_velocity`` (mirror, beta = 2) and ``morris_relative_velocity``
+both give a wall partner's velocity through ``scaled_wall_velocity``. Pair loops compute the plain difference v_i - v_j and call it only
 when j is a wall particle, with the test written in the loop. That keeps the
 common path straight-line code: moving the test and the call into one
 helper, inlined or not, makes the loops slower: continuity of the 2D column
@@ -35,33 +35,9 @@ def wall_relative_normal(i, j, v, normal):
 
 
 @njit(cache=True)
-def wall_relative_velocity(i, j, v, kind, normal):
-    """v_i - v_j as i sees wall particle j, three scalars (the third is 0 in 2D):
-    2 (v_i - v_w) for a no-slip wall, 2 ((v_i - v_w) . n_w) n_w for a free-slip wall."""
-    if kind[j] == WALL:
-        u0 = 2.0 * (v[i, 0] - v[j, 0])
-        u1 = 2.0 * (v[i, 1] - v[j, 1])
-        u2 = 2.0 * (v[i, 2] - v[j, 2]) if v.shape[1] == 3 else 0.0
-    else:
-        vn = 2.0 * wall_relative_normal(i, j, v, normal)
-        u0 = vn * normal[j, 0]
-        u1 = vn * normal[j, 1]
-        u2 = vn * normal[j, 2] if v.shape[1] == 3 else 0.0
-    return u0, u1, u2
-
-
-@njit(cache=True)
-def morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max):
-    """v_i - v_j as i sees wall particle j in the ghost-particle walls of Morris et al. (004_
-    Eqs. 34-36), three scalars (the third is 0 in 2D): beta (v_i - v_w) with
-    beta = min(beta_max, 1 + d_j/d_i), d_j the wall particle's distance behind the wall surface
-    (``wall_distance``) and d_i = (x_i - x_j).n_w - d_j the material particle's in front of it
-    (beta_max when i is on or behind the surface); only the normal part for a free-slip wall."""
-    d_j = wall_distance[j]
-    d_i = -d_j
-    for a in range(xc.shape[1]):
-        d_i += (xc[i, a] - xc[j, a]) * normal[j, a]
-    beta = min(beta_max, 1.0 + d_j / d_i) if d_i > 0.0 else beta_max
+def scaled_wall_velocity(i, j, v, kind, normal, beta):
+    """beta (v_i - v_w) for a no-slip wall particle j, beta ((v_i - v_w) . n_w) n_w for a free-slip
+    one, as three scalars (the third is 0 in 2D)."""
     if kind[j] == WALL:
         u0 = beta * (v[i, 0] - v[j, 0])
         u1 = beta * (v[i, 1] - v[j, 1])
@@ -72,3 +48,25 @@ def morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
         u1 = vn * normal[j, 1]
         u2 = vn * normal[j, 2] if v.shape[1] == 3 else 0.0
     return u0, u1, u2
+
+
+@njit(cache=True)
+def wall_relative_velocity(i, j, v, kind, normal):
+    """v_i - v_j as i sees wall particle j, mirrored: 2 (v_i - v_w) for a no-slip wall,
+    2 ((v_i - v_w) . n_w) n_w for a free-slip wall."""
+    return scaled_wall_velocity(i, j, v, kind, normal, 2.0)
+
+
+@njit(cache=True)
+def morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max):
+    """v_i - v_j as i sees wall particle j in the ghost-particle walls of Morris et al. (004_
+    Eqs. 34-36): beta (v_i - v_w) with beta = min(beta_max, 1 + d_j/d_i), d_j the wall particle's
+    distance behind the wall surface (``wall_distance``) and d_i = (x_i - x_j).n_w - d_j the
+    material particle's in front of it (beta_max when i is on or behind the surface); only the
+    normal part for a free-slip wall."""
+    d_j = wall_distance[j]
+    d_i = -d_j
+    for a in range(xc.shape[1]):
+        d_i += (xc[i, a] - xc[j, a]) * normal[j, a]
+    beta = min(beta_max, 1.0 + d_j / d_i) if d_i > 0.0 else beta_max
+    return scaled_wall_velocity(i, j, v, kind, normal, beta)
