@@ -11,10 +11,8 @@ references.inclined_plane_velocity; 004_ reached it after about 6.5 s.
 
 import math
 
-import numpy as np
-
 from mpisph.case import Body, Case, MuIGranular, Param, Wall
-from mpisph.geometry import box, support_layers
+from mpisph.geometry import bed, box, support_layers
 from mpisph.references import inclined_plane_surface_velocity
 
 PARAMS = {
@@ -37,6 +35,9 @@ PARAMS = {
     "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
     "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress divergence",
                           choices=("cleary", "corrected_stress")),
+    "viscous_step": Param("explicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
+                          "the viscous term backward in time (physics/implicit_viscosity.py)",
+                          choices=("explicit", "implicit")),
     "density_reinit": Param("none", "-", "density reinitialisation by kernel summation (001_ Eq. 8) every "
                             "configuration", choices=("none", "inner", "free_surface")),
     "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
@@ -63,8 +64,7 @@ def setup(p):
     length = p.columns * p.dp
     grains = box((0.0, 0.0), (length, p.H), p.dp, "the layer")
     layers = support_layers(p.h_factor)
-    depth = (np.arange(layers) + 0.5) * p.dp  # below the bed surface y = 0
-    bed = np.array([(x, -d) for d in depth for x in (np.arange(p.columns) + 0.5) * p.dp])
+    bed_x, bed_normal, bed_depth = bed((0.0,), (length,), p.dp, layers)
     cos, sin = math.cos(math.radians(p.theta)), math.sin(math.radians(p.theta))
     pressure = material.rho0 * p.g * cos * (p.H - grains[:, 1])
     return Case(
@@ -73,10 +73,11 @@ def setup(p):
         dp=p.dp,
         material=material,
         scheme="mu_i",
-        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form},
+        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
+                        "viscous_step": p.viscous_step},
         integrator="symplectic_verlet",
         bodies=[Body("grains", grains, pressure=pressure)],
-        walls=[Wall("bed", bed, np.tile([0.0, 1.0], (len(bed), 1)), distance=np.repeat(depth, p.columns))],
+        walls=[Wall("bed", bed_x, bed_normal, distance=bed_depth)],
         gravity=(p.g * sin, -p.g * cos),
         periodic=(True, False),
         density_reinit=p.density_reinit,

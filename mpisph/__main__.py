@@ -154,7 +154,7 @@ def run(args, comm):
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes),
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front),
                                   append=restarted, restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step

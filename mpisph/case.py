@@ -111,6 +111,16 @@ class Wall:
     distance: np.ndarray | None = None  # (n,) distance behind the wall surface (Morris walls, 004_ Eq. 34)
 
 
+@dataclass(frozen=True)
+class Front:
+    """The front of a spreading body, recorded in diagnostics.csv as column ``front``: the largest
+    distance of a moving particle from ``origin`` measured along ``axes`` only (``(0,)``: x, for a
+    planar collapse; ``(0, 1)``: the radius in the x-y plane, for an axisymmetric one)."""
+
+    origin: tuple
+    axes: tuple
+
+
 @dataclass
 class Case:
     """Everything the solver needs to know about one simulation."""
@@ -133,6 +143,7 @@ class Case:
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
     warnings: list = field(default_factory=list)  # one-line warnings printed when a run starts
     probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
+    front: Front | None = None  # recorded in diagnostics.csv when given
 
     def __post_init__(self):
         if isinstance(self.stabilisers, str):

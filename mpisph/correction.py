@@ -17,7 +17,7 @@ from numba import njit
 from .kernels import pair_dw
 from .neighbours import pair_offset
 from .particles import is_wall
-from .tensors import component
+from .tensors import adjugate, component
 
 DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
 
@@ -26,19 +26,7 @@ DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
 def _regularised_inverse(A, out):
     """out = (adj A + w I) / (det A + w) for a symmetric 2 x 2 or 3 x 3 A."""
     dim = A.shape[0]
-    if dim == 2:
-        det = A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
-        out[0, 0] = A[1, 1]
-        out[0, 1] = -A[0, 1]
-        out[1, 0] = -A[1, 0]
-        out[1, 1] = A[0, 0]
-    else:
-        for a in range(3):
-            a1, a2 = (a + 1) % 3, (a + 2) % 3
-            for b in range(3):
-                b1, b2 = (b + 1) % 3, (b + 2) % 3
-                out[b, a] = A[a1, b1] * A[a2, b2] - A[a1, b2] * A[a2, b1]
-        det = A[0, 0] * out[0, 0] + A[0, 1] * out[1, 0] + A[0, 2] * out[2, 0]
+    det = adjugate(A, out)
     w = max(0.0, DEGENERATE_DET ** dim - det)
     for a in range(dim):
         out[a, a] += w

@@ -43,6 +43,35 @@ def disk(centre, radius, dp, what="the disk"):
     return centre + pts[np.sum(pts**2, axis=1) < radius**2]
 
 
+def cylinder(base, radius, height, dp, what="the cylinder"):
+    """Cell-centred lattice inside an upright cylinder standing on ``base`` (x, y, z of the centre of
+    its bottom face): points at base + (i + 1/2) dp along each axis, so the fill is symmetric about
+    the x-z and y-z planes through the axis and holds floor(height / dp) layers."""
+    if 2 * radius < dp:
+        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({2 * radius:g} m across)")
+    m = int(np.ceil(radius / dp))
+    ring = (np.arange(-m, m) + 0.5) * dp
+    gx, gy = np.meshgrid(ring, ring, indexing="ij")
+    inside = gx**2 + gy**2 < radius**2
+    z = _axis_points(base[2], base[2] + height, dp, what)
+    layer = np.stack([gx[inside] + base[0], gy[inside] + base[1]], axis=1)
+    return np.concatenate([np.column_stack([layer, np.full(len(layer), zk)]) for zk in z])
+
+
+def bed(lo, hi, dp, layers):
+    """Dummy particles of a flat bed whose surface is the plane {last coordinate = 0} under the
+    footprint [lo, hi] of the other axes (x in 2D, x and y in 3D): ``layers`` lattice layers, the
+    shallowest first. Returns (positions, upward unit normals, depths below the surface)."""
+    axes = [_axis_points(a, b, dp, "the bed") for a, b in zip(lo, hi)]
+    grids = np.meshgrid(*axes, indexing="ij")
+    plane = np.stack([g.ravel() for g in grids], axis=1)
+    depth = np.repeat((np.arange(layers) + 0.5) * dp, len(plane))
+    pts = np.column_stack([np.tile(plane, (layers, 1)), -depth])
+    normals = np.zeros_like(pts)
+    normals[:, -1] = 1.0
+    return pts, normals, depth
+
+
 def box_walls(lo, hi, dp, layers, open_sides=()):
     """Dummy wall particles in ``layers`` lattice layers around the box [lo, hi].
 

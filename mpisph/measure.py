@@ -52,9 +52,53 @@ def runout(frame, dp):
     Particles beyond a gap (grains thrown ahead of the toe) do not count.
     """
     left, _, occupied = _surface_profile(frame["x"], dp)
+    return float(left[_last_connected(occupied)] + dp)
+
+
+def _last_connected(occupied):
+    """Index of the last occupied bin before the first empty one."""
     gap = np.flatnonzero(~occupied)
-    last = (gap[0] - 1) if len(gap) else len(occupied) - 1
-    return float(left[last] + dp)
+    return (gap[0] - 1) if len(gap) else len(occupied) - 1
+
+
+def _polar(x, sectors):
+    """Distance from the z axis and azimuthal sector (of ``sectors``) of each particle."""
+    sector = ((np.arctan2(x[:, 1], x[:, 0]) + np.pi) / (2 * np.pi) * sectors).astype(int) % sectors
+    return np.hypot(x[:, 0], x[:, 1]), sector
+
+
+def _sector_runouts(r, sector, dp, sectors):
+    """Per azimuthal sector: the outer edge of the connected deposit in dp-wide radial bins from the
+    axis. Bins nearer the axis than an arc of 2 dp per sector count as occupied (too narrow to hold
+    a particle for sure)."""
+    k = np.floor(r / dp).astype(int)
+    narrow = int(np.ceil(sectors / np.pi))
+    out = np.zeros(sectors)
+    for s in range(sectors):
+        occupied = np.zeros(k.max() + 2, bool)
+        occupied[:narrow] = True
+        occupied[k[sector == s]] = True
+        out[s] = (_last_connected(occupied) + 1) * dp
+    return out
+
+
+def radial_runout(frame, dp, sectors=16):
+    """Mean radius of an axisymmetric deposit: the edge of its connected part (``runout``'s rule,
+    on radial bins) averaged over ``sectors`` azimuthal sectors."""
+    return float(_sector_runouts(*_polar(frame["x"], sectors), dp, sectors).mean())
+
+
+def front_speed(frame, dp, radial=False, sectors=16):
+    """Mean speed of the grains in the outermost dp of the connected deposit: along x, or (``radial``)
+    from the z axis in each azimuthal sector."""
+    x, speed = frame["x"], np.linalg.norm(frame["v"], axis=1)
+    if not radial:
+        edge = runout(frame, dp)
+        return float(speed[(x[:, 0] >= edge - dp) & (x[:, 0] < edge)].mean())
+    r, sector = _polar(x, sectors)
+    edges = _sector_runouts(r, sector, dp, sectors)
+    at_front = (r >= edges[sector] - dp) & (r < edges[sector])
+    return float(speed[at_front].mean())
 
 
 def deposit_height(frame, dp, x_max):

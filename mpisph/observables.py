@@ -2,9 +2,10 @@
 
 Every run records time, step, dt, particle count, mass, kinetic energy,
 momentum, angular momentum and potential energy in gravity; the scheme adds
-its own sums (the strain energy of elastic solids) and every probe of the case
+its own sums (the strain energy of elastic solids), every probe of the case
 (a particle given by its global id) its displacement from the initial
-position.
+position, and a case with a ``Front`` the largest distance of a moving
+particle from its origin (a maximum, exact on any number of ranks).
 """
 
 import numpy as np
@@ -48,7 +49,22 @@ def moving_sums(n, kind, mass, x, v, gravity, out):
         out += part
 
 
-def observable_names(dim, scheme=None, probes=()):
+@njit(cache=True)
+def front_distance(n, kind, x, origin, axes):
+    """Largest distance of a moving particle in [0, n) from ``origin``, measured along ``axes``
+    (0 when there is none)."""
+    far = 0.0
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        s = 0.0
+        for a in axes:
+            s += (x[i, a] - origin[a]) ** 2
+        far = max(far, s)
+    return np.sqrt(far)
+
+
+def observable_names(dim, scheme=None, probes=(), front=None):
     """Columns of diagnostics.csv."""
     ang = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
@@ -56,6 +72,8 @@ def observable_names(dim, scheme=None, probes=()):
     names += list(scheme.observable_names if scheme is not None else ())
     for probe in probes:
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
+    if front is not None:
+        names.append("front")
     return names
 
 
@@ -85,6 +103,10 @@ def global_observables(sim):
     k = len(total) - len(probes) * dim
     displacement = total[k:] - np.concatenate([sim.case.probe_origins[name] for name in probes] or [[]])
     values = [sim.t, sim.step, sim.dt] + total[:k].tolist() + displacement.tolist()
-    out = dict(zip(observable_names(dim, sim.parts.scheme, probes), values))
+    front = sim.case.front
+    if front is not None:
+        far = front_distance(n, pa.kind, pa.x, np.asarray(front.origin, float), np.asarray(front.axes, np.int64))
+        values.append(sim.comm.allreduce(far, op=MPI.MAX))
+    out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front), values))
     out["n"] = int(out["n"])
     return out

@@ -98,3 +98,36 @@ def inclined_plane_pressure(material, theta_deg, H, g, z):
     """Hydrostatic pressure phi_u rho_s0 g cos(theta) (H - z) of the steady layer (004_ Fig. 7)."""
     _, phi_u = material.uniform_flow(theta_deg)
     return phi_u * material.rho_s0 * g * np.cos(np.radians(theta_deg)) * (H - np.asarray(z, dtype=float))
+
+
+# 004_ Table 3: the paper's (2D) runs of Lube's sand columns, r_0 = 9.72 cm, rho_s0 = 2600 kg/m^3,
+# d = 0.32 mm, sand of Table 1's third column. Columns: id: (a, H_0 [m], K_t [1/Pa], tau_0 [Pa], m_0 [s],
+# eta_max [Pa s], N, dp [m], h [m]). K_t as printed equals 1 / (rho_s0 c) with c = 10 sqrt(g H_0) to
+# within 1.5 % (row 6 prints 2.2e-6 where that gives 2.25e-5), which has the units of m^2 s/kg, not
+# 1/Pa; tau_0 equals mu_s phi_max rho_s0 g H_0 within 1.2 % (6 % in row 1). The cases take K_t from the
+# text instead: Mach 0.1 with U = sqrt(g H_0).
+LUBE_TABLE_3 = {
+    1: (0.19, 0.0185, 9.0e-5, 177.0, 1.2, 215.0, 2500, 1.20e-3, 1.56e-3),
+    2: (0.55, 0.0535, 5.3e-5, 483.0, 1.4, 684.0, 2200, 2.20e-3, 2.86e-3),
+    3: (0.90, 0.0875, 4.1e-5, 795.0, 1.2, 961.0, 1900, 3.02e-3, 3.93e-3),
+    4: (1.60, 0.1555, 3.1e-5, 1414.0, 1.4, 2003.0, 2900, 3.24e-3, 4.21e-3),
+    5: (2.75, 0.2673, 2.4e-5, 2415.0, 1.6, 3911.0, 2300, 4.86e-3, 6.32e-3),
+    6: (3.00, 0.2916, 2.2e-6, 2660.0, 1.6, 4292.0, 2500, 4.86e-3, 6.32e-3),
+}
+LUBE_R0 = 0.0972  # m, radius of the columns of Lube et al. (2004) that 004_ reproduces
+
+
+def axisymmetric_runout(a):
+    """(r_inf - r_0) / r_0 of an axisymmetric column of aspect ratio a = H_0 / r_0 (Lube et al. 2004,
+    004_ Eq. 58): 1.24 a for a < 1.7, 1.6 a^(1/2) above."""
+    a = np.asarray(a, dtype=float)
+    return np.where(a < 1.7, 1.24 * a, 1.6 * np.sqrt(a))
+
+
+def planar_runout(a):
+    """(L_inf - L_0) / L_0 of a planar column of aspect ratio a = H_0 / L_0 (Lube et al. 2005,
+    Balmforth & Kerswell 2005): 1.2 a for small a, 1.9 a^(2/3) for large a. The experiments place the
+    change between a = 2 and 3, where the two laws differ by 26 % (a = 2) to 10 % (a = 3); this returns the smaller, which
+    switches at a = (1.9 / 1.2)^3 = 3.97. The validation fits the two regimes separately."""
+    a = np.asarray(a, dtype=float)
+    return np.minimum(1.2 * a, 1.9 * a ** (2.0 / 3.0))

@@ -10,6 +10,8 @@ large a time step it allows. It sees the step only through a ``StepContext``
     state(ctx)          per step: what the momentum sum reads (pressure, stress),
                         then the integrator refreshes ``state_fields`` on ghosts
     forces()            the scheme's force terms, summed with the others (forces.py)
+    implicit_kick(ctx, dt)  when ``implicit``: after the explicit kick, the part of the
+                        kick the scheme takes backward in time (integrators that support it)
     rates(ctx, dt)      per step, after the kick and the drift: the density rate
                         drho/dt and whatever else the scheme integrates itself
 """
@@ -30,6 +32,7 @@ class Scheme:
     acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
     observable_names = ()  # its columns of diagnostics.csv
     options = {}  # the discretisation options a case may set (Case.scheme_options) and their defaults
+    implicit = False  # takes part of the kick implicitly (implicit_kick)
 
     def __init__(self, case, kernel):
         self.material = case.material
@@ -65,6 +68,11 @@ class Scheme:
     def forces(self):
         """The scheme's force terms, in the order they are summed."""
         return ()
+
+    def implicit_kick(self, ctx, dt):
+        """Per step, after the explicit kick of the owned particles' ``v`` (sent to ghosts): the
+        velocities with the scheme's implicit terms over dt."""
+        raise NotImplementedError
 
     def configure(self, ctx):
         """Once per neighbour configuration."""

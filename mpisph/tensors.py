@@ -38,6 +38,24 @@ def unpack_row(t, i, out):
             out[a, b] = t[i, SYM3[a, b]]
 
 
+@njit(cache=True)
+def adjugate(A, out):
+    """out = adj A of a 2 x 2 or 3 x 3 matrix A (A adj A = det A I); returns det A. For a
+    symmetric A the adjugate is symmetric to the bit (its cofactors are the same products)."""
+    if A.shape[0] == 2:
+        out[0, 0] = A[1, 1]
+        out[0, 1] = -A[0, 1]
+        out[1, 0] = -A[1, 0]
+        out[1, 1] = A[0, 0]
+        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+    for a in range(3):
+        a1, a2 = (a + 1) % 3, (a + 2) % 3
+        for b in range(3):
+            b1, b2 = (b + 1) % 3, (b + 2) % 3
+            out[b, a] = A[a1, b1] * A[a2, b2] - A[a1, b2] * A[a2, b1]
+    return A[0, 0] * out[0, 0] + A[0, 1] * out[1, 0] + A[0, 2] * out[2, 0]
+
+
 def packed(full):
     """(n, d, d) symmetric tensors as (n, d (d + 1) / 2) packed rows (the upper triangle)."""
     full = np.asarray(full, dtype=np.float64)

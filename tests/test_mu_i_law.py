@@ -8,13 +8,13 @@ import pytest
 
 from mpisph import references
 from mpisph.errors import InputError
-from mpisph.kernels import Kernel
 from mpisph.materials import MuIGranular
-from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i import momentum, strain_rate, viscous_force_tensor
 from mpisph.physics.mu_i_law import friction, grain_density_ratio, regularised_viscosity, residual_viscosity
 from mpisph.correction import correction_matrix
 from mpisph.tensors import size
+
+from lattice import lattice
 
 
 def beads(**changes):
@@ -163,17 +163,6 @@ def test_uniform_flow_down_the_incline():
         mat.uniform_flow(35.0)  # tan 35 deg > mu_2
     with pytest.raises(ValueError):
         mat.uniform_flow(20.0)  # below mu_s: the layer stays at rest
-
-
-def lattice(dim, h_over_dp, n=24, dp=0.01):
-    x = (np.arange(n) + 0.5) * dp
-    grids = np.meshgrid(*([x] * dim), indexing="ij")
-    x = np.stack([g.ravel() for g in grids], axis=1)
-    k = Kernel("wendland_c2", h_over_dp * dp, dim)
-    kind = np.zeros(len(x), np.int8)
-    start, nbr = neighbour_lists(x, np.arange(len(x)), kind, len(x), k.support, np.zeros(dim) - dp)
-    inner = np.all(np.abs(x - 0.5 * n * dp) < 0.2 * n * dp, axis=1)
-    return x, kind, start, nbr, k, inner
 
 
 def viscous_acceleration(dim, h_over_dp, corrected):

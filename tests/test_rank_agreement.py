@@ -19,6 +19,8 @@ CASES = {
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
+    # the implicit viscous kick: conjugate gradients with partition-independent sums
+    "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
 }
 FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "plastic_strain", "eta", "rho_s")
 

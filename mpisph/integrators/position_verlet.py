@@ -16,6 +16,7 @@ half of the next one.
 
 import numpy as np
 
+from ..errors import InputError
 from ..particles import Field
 from .updates import density_half, drift_half, kick
 
@@ -25,8 +26,12 @@ class PositionVerlet:
 
     name = "position_verlet"
     fields = (Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),)
+    takes_implicit = False  # calls Scheme.implicit_kick
 
     def __init__(self, scheme, forces):
+        if scheme.implicit and not self.takes_implicit:
+            raise InputError(f"integrator {self.name} has no implicit kick, which scheme {scheme.name} asks for "
+                             f"with these options")
         self.scheme = scheme
         self.forces = forces
         self.ghost_fields = list(dict.fromkeys(scheme.state_fields + forces.ghost_fields))

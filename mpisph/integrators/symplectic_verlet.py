@@ -7,7 +7,11 @@ the order of the sub-steps of one time step.
     2. state         the scheme's state at n + 1/2 from v* (strain rate,
                      pressure, viscosity); ghosts: its state fields
     3. kick          v = v(n) + dt a(n + 1/2), a the sum of the force terms
-                     (forces.py) at n + 1/2; ghosts: v
+                     (forces.py) at n + 1/2; ghosts: v. A scheme with an
+                     implicit part (``Scheme.implicit``) then takes it from
+                     these velocities (the mu(I) viscosity backward in time,
+                     physics/implicit_viscosity.py), a becomes (v - v(n))/dt,
+                     and the ghosts get v again
     4. second half   x += dt/2 v
     5. rates         the scheme's drho/dt from the new velocities
     6. density       rho += dt/2 drho/dt
@@ -40,6 +44,7 @@ class SymplecticVerlet(PositionVerlet):
     fields = PositionVerlet.fields + (
         Field("dv_dt", ("dim",), np.float64, "acceleration of the last step, at its midpoint [m/s^2]"),
         Field("v_start", ("dim",), np.float64, "velocity at the start of the step [m/s]"))
+    takes_implicit = True
 
     def step(self, ctx, dt):
         pa = ctx.particles
@@ -58,6 +63,10 @@ class SymplecticVerlet(PositionVerlet):
         pa.v[:n] = v_start
         kick(n, pa.kind, pa.v, dv_dt, dt)
         ctx.refresh(["v"])
+        if self.scheme.implicit:
+            self.scheme.implicit_kick(ctx, dt)
+            dv_dt[:] = (pa.v[:n] - v_start) / dt
+            ctx.refresh(["v"])
         # 4. second half: positions
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
         # 5. rates from the new velocities

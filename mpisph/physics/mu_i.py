@@ -37,10 +37,13 @@ relative velocity beta (v_i - v_w).
 
 The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
 acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
-part as the scheme's ``time_step_limit``. The viscous force is evaluated every
+part as the scheme's ``time_step_limit``, which the implicit viscous kick
+(option ``viscous_step``, implicit_viscosity.py) lifts. The viscous force is evaluated every
 step, so the advection criterion of 001_ Eq. 10 needs no viscous term here.
 The order of the sub-steps is integrators/symplectic_verlet.py's.
 """
+
+import math
 
 import numpy as np
 from numba import njit
@@ -54,6 +57,7 @@ from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import density_summation
+from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import friction, grain_density_ratio, inertial_number, regularised_viscosity
 from .walls import morris_relative_velocity
 
@@ -233,11 +237,12 @@ class GranularMomentum(ForceTerm):
     def add(self, ctx, acc):
         pa, s = ctx.particles, self.scheme
         momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, s.force_tensors(pa), pa.mass,
-                 pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, s.viscous_factor,
-                 ctx.kernel.params, acc)
+                 pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
+                 0.0 if s.implicit else s.viscous_factor, ctx.kernel.params, acc)
 
 
 VISCOUS_FORMS = ("cleary", "corrected_stress")
+VISCOUS_STEPS = ("explicit", "implicit")
 
 
 class MuIScheme(Scheme):
@@ -247,16 +252,18 @@ class MuIScheme(Scheme):
     viscous time-step limit sees the current viscosity); per step: strain rate,
     then grain density, pressure and viscosity (the state), and continuity (the
     rate). Options (``Case.scheme_options``): ``alpha`` of Eq. 38 (default 0),
-    ``beta_max`` of Eq. 36 (default 1.5, Morris et al.) and ``viscous_form``:
+    ``beta_max`` of Eq. 36 (default 1.5, Morris et al.), ``viscous_form``:
     ``cleary``, the pair term of Eq. 27 as printed, or ``corrected_stress``, the
     viscous stress 2 eta eps from the corrected gradient and its divergence with
-    the correction matrix (module docstring).
+    the correction matrix (module docstring), and ``viscous_step``: ``explicit``
+    (Eq. 39's viscous limit bounds the step) or ``implicit``, the pair term
+    taken backward in time in the kick (implicit_viscosity.py).
     """
 
     name = "mu_i"
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
-    options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary"}
+    options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
@@ -266,6 +273,9 @@ class MuIScheme(Scheme):
             raise InputError(f"scheme mu_i: viscous_form must be one of {', '.join(VISCOUS_FORMS)}, "
                              f"not {self.option('viscous_form')!r}")
         self.corrected = self.option("viscous_form") == "corrected_stress"
+        if self.option("viscous_step") not in VISCOUS_STEPS:
+            raise InputError(f"scheme mu_i: viscous_step must be one of {', '.join(VISCOUS_STEPS)}, "
+                             f"not {self.option('viscous_step')!r}")
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -288,6 +298,11 @@ class MuIScheme(Scheme):
                 Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
                 Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
             self.state_fields = ("p", "T_visc")
+        self.implicit = self.option("viscous_step") == "implicit"
+        if self.implicit:
+            self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
+            self.fields += (Field("viscous_direction", ("dim",), np.float64,
+                                  "search direction of the implicit viscous kick [m/s]"),)
         self._no_T, self._no_B = np.zeros((0, 1, 1)), np.zeros((0, 1))
 
     def force_tensors(self, pa):
@@ -326,8 +341,13 @@ class MuIScheme(Scheme):
                    self.beta_max, ctx.kernel.params, pa.drho_dt)
 
     def time_step_limit(self, ctx):
+        if self.implicit:
+            return math.inf
         pa = ctx.particles
         return viscous_time_step(pa.n_owned, pa.kind, pa.rho, pa.eta, self.h)
+
+    def implicit_kick(self, ctx, dt):
+        self.implicit_viscosity.kick(ctx, dt)
 
     def report(self):
         m = self.material

@@ -64,9 +64,15 @@ def morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
     distance behind the wall surface (``wall_distance``) and d_i = (x_i - x_j).n_w - d_j the
     material particle's in front of it (beta_max when i is on or behind the surface); only the
     normal part for a free-slip wall."""
+    return scaled_wall_velocity(i, j, v, kind, normal, morris_beta(i, j, xc, normal, wall_distance, beta_max))
+
+
+@njit(cache=True)
+def morris_beta(i, j, xc, normal, wall_distance, beta_max):
+    """beta = min(beta_max, 1 + d_j/d_i) of 004_ Eq. 36 for wall particle j seen from i (the
+    distances of ``morris_relative_velocity``; beta_max when i is on or behind the surface)."""
     d_j = wall_distance[j]
     d_i = -d_j
     for a in range(xc.shape[1]):
         d_i += (xc[i, a] - xc[j, a]) * normal[j, a]
-    beta = min(beta_max, 1.0 + d_j / d_i) if d_i > 0.0 else beta_max
-    return scaled_wall_velocity(i, j, v, kind, normal, beta)
+    return min(beta_max, 1.0 + d_j / d_i) if d_i > 0.0 else beta_max

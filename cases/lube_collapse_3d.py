@@ -1,0 +1,39 @@
+"""Axisymmetric collapse of a sand column on a rough floor in true 3D, mu(I) rheology (Lube et al. 2004; 004_ Sec. 5.2).
+
+A cylinder of radius r_0 and height H_0 = a r_0 stands on the middle of a
+round no-slip floor and is released at t = 0 (the lifted tube is not
+modelled). The sand and its defaults are granular_column.py's; 004_ Table 3
+(references.LUBE_TABLE_3) lists the paper's 2D runs of these columns. The
+front (largest distance of a grain from the axis) is a column of
+diagnostics.csv; the deposit's runout r_inf is measure.radial_runout of the
+last frame, compared with references.axisymmetric_runout.
+"""
+
+from mpisph.case import Case, Param, Wall
+from mpisph.geometry import bed, cylinder, support_layers
+from mpisph.granular_column import column_case_settings, column_params, sand
+from mpisph.references import LUBE_R0, axisymmetric_runout
+
+PARAMS = {
+    "r_0": Param(LUBE_R0, "m", "radius of the column (Lube et al. 2004)", positive=True),
+    **column_params(a=0.55, dp=0.0065, m_0=1.4),  # 004_ Table 3, row 2 (its dp is 2.2 mm in 2D)
+    "t_end": Param(0.6, "s", "simulated end time", positive=True),
+    "output_interval": Param(0.05, "s", "simulated time between frames", positive=True),
+}
+
+
+def setup(p):
+    H0 = p.a * p.r_0
+    material = sand(p, H0)
+    column = cylinder((0.0, 0.0, 0.0), p.r_0, H0, p.dp, "the column")
+    layers = support_layers(p.h_factor)
+    margin = layers * p.dp
+    radius = p.r_0 * (1.0 + 2.0 * float(axisymmetric_runout(p.a))) + margin  # room for grains thrown ahead
+    floor_x, floor_n, floor_d = bed((-radius, -radius), (radius, radius), p.dp, layers)
+    round_floor = floor_x[:, 0] ** 2 + floor_x[:, 1] ** 2 < radius**2
+    edge = radius + margin
+    return Case(
+        domain=((-edge, -edge, -margin), (edge, edge, 1.5 * H0 + margin)),
+        walls=[Wall("floor", floor_x[round_floor], floor_n[round_floor], distance=floor_d[round_floor])],
+        **column_case_settings(p, material, column, H0, front_axes=(0, 1)),
+    )

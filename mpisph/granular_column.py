@@ -1,0 +1,86 @@
+"""Columns of sand released on a rough floor, mu(I) scheme (004_ Sec. 5.2): what the planar and the
+axisymmetric collapse cases share.
+
+The sand is 004_ Table 1's third column (mu_s = tan 30.5 deg, mu_2 = tan 51.3 deg,
+I_0 = 2.65) with d = 0.32 mm and rho_s0 = 2600 kg/m^3, as in Lube et al.
+(2004). Two parameters follow from the column height H_0 unless given:
+
+- K_t from the Mach number 0.1 with U = sqrt(g H_0), as 004_ Sec. 5.2 says:
+  c0 = 10 sqrt(g H_0) and K_t = 1 / (rho0 c0^2). (Table 3's printed values
+  are 1 / (rho_s0 c0), references.LUBE_TABLE_3.)
+- tau_0 = mu_s phi_max rho_s0 g H_0, the yield stress at the foot of the
+  column, which Table 3's values follow within about 1 %.
+
+The column starts at rest with the hydrostatic pressure of its bulk density at
+rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
+"""
+
+import math
+
+from .case import Body, Front, MuIGranular, Param
+from .references import MU_I_MATERIALS
+
+SAND = MU_I_MATERIALS["sand_0.4mm"]
+MACH = 0.1  # 004_ Sec. 5.2, with U = sqrt(g H_0)
+
+
+def column_params(a, dp, m_0):
+    """Typed parameters of a column of aspect ratio ``a`` at spacing ``dp``, with the regularisation
+    time ``m_0`` (004_ Table 3 uses 1.2-1.6 s)."""
+    return {
+        "a": Param(a, "-", "aspect ratio of the column, height over length (planar) or radius", positive=True),
+        "dp": Param(dp, "m", "particle spacing", positive=True),
+        "g": Param(9.81, "m/s^2", "gravity", positive=True),
+        "rho_s0": Param(2600.0, "kg/m^3", "grain density unconfined (004_ Sec. 5.2)", positive=True),
+        "d": Param(SAND["d"], "m", "grain size (004_ Sec. 5.2)", positive=True),
+        "mu_s_deg": Param(SAND["mu_s_deg"], "deg", "static friction angle, mu_s = tan (004_ Table 1)"),
+        "mu_2_deg": Param(SAND["mu_2_deg"], "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)"),
+        "I_0": Param(SAND["I_0"], "-", "reference inertial number (004_ Sec. 2.1)", positive=True),
+        "phi_max": Param(0.6, "-", "volume fraction at rest (Eq. 8)", positive=True),
+        "phi_min": Param(0.5, "-", "lowest volume fraction of the dense regime (Eq. 8)", positive=True),
+        "K_t": Param(0.0, "1/Pa", "grain compressibility (Eq. 41); 0: from Mach 0.1 with U = sqrt(g H_0)"),
+        "tau_0": Param(0.0, "Pa", "reference yield stress of the regularisation (Eq. 55); 0: mu_s phi_max "
+                       "rho_s0 g H_0"),
+        "m_0": Param(m_0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
+        "alpha": Param(0.0, "-", "artificial viscosity (Eq. 38; 004_ uses none for the collapses)"),
+        "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
+        "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress "
+                              "divergence", choices=("cleary", "corrected_stress")),
+        "viscous_step": Param("implicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
+                              "the viscous term backward in time (physics/implicit_viscosity.py)",
+                              choices=("explicit", "implicit")),
+        "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; "
+                               "dual: 001_ Eqs. 9-11", choices=("dual", "single")),
+        "diagnostics_every": Param(100, "steps", "steps between rows of diagnostics.csv", positive=True),
+    }
+
+
+def sand(p, H0):
+    """The MuIGranular of the parameters ``p`` for a column of height ``H0``."""
+    mu_s = math.tan(math.radians(p.mu_s_deg))
+    rho0 = p.phi_max * p.rho_s0
+    K_t = p.K_t if p.K_t != 0 else MACH**2 / (rho0 * p.g * H0)
+    tau_0 = p.tau_0 if p.tau_0 != 0 else mu_s * rho0 * p.g * H0
+    return MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=mu_s, mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0,
+                       K_t=K_t, tau_0=tau_0, m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
+
+
+def column_case_settings(p, material, column, H0, front_axes):
+    """Case keywords shared by the collapses: the column body at rest under hydrostatic pressure,
+    the mu_i scheme and its options, symplectic Verlet, the front gauge and the reference speed
+    sqrt(g H0)."""
+    pressure = material.rho0 * p.g * (H0 - column[:, -1])
+    dim = column.shape[1]
+    return dict(
+        dim=dim,
+        dp=p.dp,
+        material=material,
+        scheme="mu_i",
+        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
+                        "viscous_step": p.viscous_step},
+        integrator="symplectic_verlet",
+        bodies=[Body("column", column, pressure=pressure)],
+        gravity=(0.0,) * (dim - 1) + (-p.g,),
+        front=Front((0.0,) * dim, front_axes),
+        u_ref=math.sqrt(p.g * H0),
+    )

@@ -1,0 +1,236 @@
+"""The viscous term of the mu(I) scheme taken backward in time: a semi-implicit kick.
+
+The regularised viscosity of 004_ reaches eta_max = tau_0 m_0 + eta_0 where the
+grains rest (Eq. 53), and the viscous limit of Eq. 39, dt < 0.05 rho h^2 /
+eta, then asks for steps of about 1e-6 s in Lube's columns: a million steps
+per second of collapse. With ``viscous_step = implicit`` the kick solves
+
+    v(n+1) = v(n) + dt a_other(n+1/2) + dt a_visc[v(n+1)]
+
+for v(n+1), the viscosity, densities and positions frozen at n + 1/2 (the
+state the explicit forces use), a_visc the pair term of Eq. 27:
+
+    a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j).
+
+This is backward Euler for the viscous part: first order in time for it,
+stable for any dt and damping the stiffest modes (the resting grains move as a
+body), so the step falls back to the acoustic limit h / c0. On a Morris wall
+partner u_ij is beta (u_i - u_w) (Eqs. 34-36). On a free-slip wall the pair
+force is projected on the wall normal n: the explicit form beta (d.n)(n.u) d
+has a tangential part that cancels over a flat wall's neighbours but would
+make the system unsymmetric; projected it is beta (d.n)^2 (n.u) n.
+
+Multiplied by the masses, the system m (u - dt a_visc[u]) = m b is symmetric
+(m_i m_j eta_ij / (rho_i rho_j) is) and positive definite (each pair
+dissipates), so it is solved by conjugate gradients with the particles' own
+dim x dim diagonal blocks as preconditioner. Its dot products are
+partition-independent sums (parallel/exact_sum.py), so the iterates, the
+iteration count and the particles stay bit for bit the same on any number of
+ranks. The iteration stops when the preconditioned residual, as an RMS
+velocity sqrt(r.z / sum m), is below ``TOLERANCE`` times the case's reference
+speed, or ``RELATIVE_TOLERANCE`` times its initial value.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..errors import InputError
+from ..kernels import pair_dw
+from ..neighbours import pair_offset
+from ..particles import MOVING, WALL, is_wall
+from ..parallel.exact_sum import global_sums
+from ..tensors import adjugate
+from .walls import morris_beta
+
+TOLERANCE = 1e-7  # of the reference speed, RMS over the particles
+RELATIVE_TOLERANCE = 1e-8  # of the initial preconditioned residual
+MAX_ITERATIONS = 2000
+
+
+@njit(cache=True)
+def viscous_pairs(n, start, nbr, xc, rho, eta, mass, kind, normal, wall_distance, beta_max, factor, k, coef, e):
+    """The pair term of Eq. 27 as a_visc[u]_i = sum_s coef_s e_s (e_s . (u_i - u_j)) over the
+    neighbour list: e_s = r_ij (a free-slip wall partner: (r_ij . n) n) and coef_s <= 0, beta of
+    Eq. 36 included for wall partners."""
+    dim = xc.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            rho_j, eta_j = rho[j], eta[j]
+            if is_wall(kind[j]):  # off the common path
+                rho_j, eta_j = rho[i], eta[i]
+            eta_sum = eta[i] + eta_j
+            c = 0.0
+            if eta_sum > 0.0:
+                c = mass[j] * pair_dw(k, r, i, j) / r * factor * 2.0 * eta[i] * eta_j / eta_sum / (r * r * rho[i] * rho_j)
+            if is_wall(kind[j]):
+                c *= morris_beta(i, j, xc, normal, wall_distance, beta_max)
+                if kind[j] != WALL:  # free slip: normal relative velocity, force along the normal
+                    dn = d0 * normal[j, 0] + d1 * normal[j, 1] + (d2 * normal[j, 2] if dim == 3 else 0.0)
+                    d0, d1 = dn * normal[j, 0], dn * normal[j, 1]
+                    d2 = dn * normal[j, 2] if dim == 3 else 0.0
+            coef[s] = c
+            e[s, 0] = d0
+            e[s, 1] = d1
+            e[s, 2] = d2
+
+
+@njit(cache=True)
+def viscous_acceleration(n, start, nbr, kind, coef, e, u, homogeneous, out):
+    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``; the wall partners'
+    velocity is taken as zero when ``homogeneous`` (the operator alone), else their wall velocity."""
+    dim = u.shape[1]
+    for i in range(n):
+        a0 = a1 = a2 = 0.0
+        if kind[i] == MOVING:
+            for s in range(start[i], start[i + 1]):
+                j = nbr[s]
+                w = 0.0 if homogeneous and is_wall(kind[j]) else 1.0
+                du = (u[i, 0] - w * u[j, 0]) * e[s, 0] + (u[i, 1] - w * u[j, 1]) * e[s, 1]
+                if dim == 3:
+                    du += (u[i, 2] - w * u[j, 2]) * e[s, 2]
+                c = coef[s] * du
+                a0 += c * e[s, 0]
+                a1 += c * e[s, 1]
+                a2 += c * e[s, 2]
+        out[i, 0] = a0
+        out[i, 1] = a1
+        if dim == 3:
+            out[i, 2] = a2
+
+
+@njit(cache=True)
+def preconditioner(n, start, kind, mass, coef, e, dt, inverse):
+    """inverse_i = the inverse of the diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving
+    particles (identity elsewhere)."""
+    dim = inverse.shape[1]
+    block = np.zeros((dim, dim))
+    adj = np.zeros((dim, dim))
+    for i in range(n):
+        block[:, :] = 0.0
+        for a in range(dim):
+            block[a, a] = 1.0
+        if kind[i] == MOVING:
+            for s in range(start[i], start[i + 1]):
+                for a in range(dim):
+                    for b in range(dim):
+                        block[a, b] -= dt * coef[s] * e[s, a] * e[s, b]
+            for a in range(dim):
+                for b in range(dim):
+                    block[a, b] *= mass[i]
+        det = adjugate(block, adj)
+        for a in range(dim):
+            for b in range(dim):
+                inverse[i, a, b] = adj[a, b] / det
+
+
+@njit(cache=True)
+def residual(n, kind, mass, dt, a_visc, r, inverse, z, p, terms):
+    """r = m dt a_visc[b] (the residual of the first guess u = b), z = p = inverse r, and the
+    terms of r . z; zero rows for particles that do not move."""
+    dim = r.shape[1]
+    for i in range(n):
+        terms[0, i] = 0.0
+        for a in range(dim):
+            r[i, a] = mass[i] * dt * a_visc[i, a] if kind[i] == MOVING else 0.0
+        for a in range(dim):
+            z[i, a] = 0.0
+            for b in range(dim):
+                z[i, a] += inverse[i, a, b] * r[i, b]
+            p[i, a] = z[i, a]
+            terms[0, i] += r[i, a] * z[i, a]
+
+
+@njit(cache=True)
+def operator(n, kind, mass, dt, p, a_visc, q, terms):
+    """q = m (p - dt a_visc[p]) and the terms of p . q."""
+    dim = p.shape[1]
+    for i in range(n):
+        terms[0, i] = 0.0
+        for a in range(dim):
+            q[i, a] = mass[i] * (p[i, a] - dt * a_visc[i, a]) if kind[i] == MOVING else 0.0
+            terms[0, i] += p[i, a] * q[i, a]
+
+
+@njit(cache=True)
+def advance(n, kind, alpha, p, q, u, r, inverse, z, terms):
+    """u += alpha p, r -= alpha q, z = inverse r, and the terms of r . z."""
+    dim = p.shape[1]
+    for i in range(n):
+        terms[0, i] = 0.0
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            u[i, a] += alpha * p[i, a]
+            r[i, a] -= alpha * q[i, a]
+        for a in range(dim):
+            z[i, a] = 0.0
+            for b in range(dim):
+                z[i, a] += inverse[i, a, b] * r[i, b]
+            terms[0, i] += r[i, a] * z[i, a]
+
+
+@njit(cache=True)
+def new_direction(n, kind, beta, z, p):
+    """p = z + beta p on the moving particles."""
+    for i in range(n):
+        if kind[i] == MOVING:
+            for a in range(p.shape[1]):
+                p[i, a] = z[i, a] + beta * p[i, a]
+
+
+class ImplicitViscosity:
+    """The backward-Euler viscous kick (module docstring) of a mu_i scheme ``scheme``; its search
+    direction is the particle field ``viscous_direction``, sent to ghosts every iteration."""
+
+    def __init__(self, scheme, u_ref):
+        if scheme.corrected:
+            raise InputError("scheme mu_i: viscous_step = implicit takes the pair term of Eq. 27 "
+                             "(viscous_form = cleary)")
+        if not u_ref > 0:
+            raise InputError("scheme mu_i: viscous_step = implicit needs the case's reference speed u_ref")
+        self.scheme = scheme
+        self.u_ref = u_ref
+        self.total_mass = None
+        self.iterations = 0
+
+    def kick(self, ctx, dt):
+        """Replace the explicitly kicked velocities b of the owned moving particles (``v``, sent to
+        the ghosts already) by the solution u of m (u - dt a_visc[u]) = m b + dt (wall terms)."""
+        pa, s, ws = ctx.particles, self.scheme, ctx.workspace
+        n, dim, comm = pa.n_owned, pa.dim, ctx.halo.comm
+        a_visc, r, z, q = (ws.get(name, n, (dim,)) for name in ("cg_a", "cg_r", "cg_z", "cg_q"))
+        inverse = ws.get("cg_inverse", n, (dim, dim))
+        terms = ws.get("cg_terms", n)[None, :]
+        pairs = len(ctx.nbr)
+        coef, e = ws.get("cg_coef", pairs), ws.get("cg_e", pairs, (3,))
+        p = pa.viscous_direction
+        if self.total_mass is None:
+            moving = (pa.kind[:n] == MOVING)[None, :]
+            self.total_mass = global_sums(comm, np.where(moving, pa.mass[:n][None, :], 0.0))[0]
+        viscous_pairs(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.mass, pa.kind, pa.normal, pa.wall_distance,
+                      s.beta_max, s.viscous_factor, ctx.kernel.params, coef, e)
+        preconditioner(n, ctx.start, pa.kind, pa.mass, coef, e, dt, inverse)
+        viscous_acceleration(n, ctx.start, ctx.nbr, pa.kind, coef, e, pa.v, False, a_visc)
+        residual(n, pa.kind, pa.mass, dt, a_visc, r, inverse, z, p, terms)
+        rz = rz0 = global_sums(comm, terms)[0]
+        floor = max(RELATIVE_TOLERANCE**2 * rz0, (TOLERANCE * self.u_ref) ** 2 * self.total_mass)
+        for iteration in range(MAX_ITERATIONS + 1):
+            if rz <= floor:
+                self.iterations = iteration
+                return
+            ctx.refresh(["viscous_direction"])
+            viscous_acceleration(n, ctx.start, ctx.nbr, pa.kind, coef, e, p, True, a_visc)
+            operator(n, pa.kind, pa.mass, dt, p, a_visc, q, terms)
+            alpha = rz / global_sums(comm, terms)[0]
+            advance(n, pa.kind, alpha, p, q, pa.v, r, inverse, z, terms)
+            rz_new = global_sums(comm, terms)[0]
+            new_direction(n, pa.kind, rz_new / rz, z, p)
+            rz = rz_new
+        raise RuntimeError(f"implicit viscous step: no convergence in {MAX_ITERATIONS} conjugate-gradient "
+                           f"iterations (RMS residual {math.sqrt(rz / self.total_mass):.3g} m/s)")
