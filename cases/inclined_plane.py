@@ -38,6 +38,8 @@ PARAMS = {
     "viscous_step": Param("explicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
                           "the viscous term backward in time (physics/implicit_viscosity.py)",
                           choices=("explicit", "implicit")),
+    "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or secant "
+                            "(mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
     "density_reinit": Param("none", "-", "density reinitialisation by kernel summation (001_ Eq. 8) every "
                             "configuration", choices=("none", "inner", "free_surface")),
     "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
@@ -74,7 +76,8 @@ def setup(p):
         material=material,
         scheme="mu_i",
         scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                        "viscous_step": p.viscous_step},
+                        "viscous_step": p.viscous_step,
+                        "viscosity_mean": p.viscosity_mean},
         integrator="symplectic_verlet",
         bodies=[Body("grains", grains, pressure=pressure)],
         walls=[Wall("bed", bed_x, bed_normal, distance=bed_depth)],

@@ -49,6 +49,8 @@ def column_params(a, dp, m_0):
         "viscous_step": Param("implicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
                               "the viscous term backward in time (physics/implicit_viscosity.py)",
                               choices=("explicit", "implicit")),
+        "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or secant "
+                                "(mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; "
                                "dual: 001_ Eqs. 9-11", choices=("dual", "single")),
         "diagnostics_every": Param(100, "steps", "steps between rows of diagnostics.csv", positive=True),
@@ -77,7 +79,8 @@ def column_case_settings(p, material, column, H0, front_axes):
         material=material,
         scheme="mu_i",
         scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                        "viscous_step": p.viscous_step},
+                        "viscous_step": p.viscous_step,
+                        "viscosity_mean": p.viscosity_mean},
         integrator="symplectic_verlet",
         bodies=[Body("column", column, pressure=pressure)],
         gravity=(0.0,) * (dim - 1) + (-p.g,),

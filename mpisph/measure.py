@@ -88,17 +88,18 @@ def radial_runout(frame, dp, sectors=16):
     return float(_sector_runouts(*_polar(frame["x"], sectors), dp, sectors).mean())
 
 
-def front_speed(frame, dp, radial=False, sectors=16):
-    """Mean speed of the grains in the outermost dp of the connected deposit: along x, or (``radial``)
-    from the z axis in each azimuthal sector."""
-    x, speed = frame["x"], np.linalg.norm(frame["v"], axis=1)
+def front_position(frame, dp, radial=False, sectors=16):
+    """Where the connected deposit ends, to better than a bin: the largest x of the grains in its
+    outermost dp-wide bin, or (``radial``) the largest distance from the z axis of those of each
+    azimuthal sector, averaged over the sectors."""
+    x = frame["x"]
     if not radial:
         edge = runout(frame, dp)
-        return float(speed[(x[:, 0] >= edge - dp) & (x[:, 0] < edge)].mean())
+        return float(x[(x[:, 0] >= edge - dp) & (x[:, 0] < edge), 0].max())
     r, sector = _polar(x, sectors)
     edges = _sector_runouts(r, sector, dp, sectors)
     at_front = (r >= edges[sector] - dp) & (r < edges[sector])
-    return float(speed[at_front].mean())
+    return float(np.mean([r[at_front & (sector == s)].max() for s in range(sectors) if np.any(at_front & (sector == s))]))
 
 
 def deposit_height(frame, dp, x_max):

@@ -12,6 +12,7 @@ from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL, WALL_SLIP
 from mpisph.physics.implicit_viscosity import TOLERANCE, ImplicitViscosity, viscous_acceleration, viscous_pairs
 from mpisph.physics.mu_i import momentum
+from mpisph.physics.mu_i_law import MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT
 from mpisph.workspace import Workspace
 
 from lattice import lattice
@@ -35,39 +36,43 @@ def bed_lattice(dim, bed_kind, seed=1):
         x=x, kind=kind, start=start, nbr=nbr, k=k, n=n, normal=normal,
         wall_distance=np.where(kind != MOVING, BED_ROWS * DP - up, 0.0),
         v=np.where((kind == MOVING)[:, None], rng.normal(size=(n, dim)), 0.0),
-        rho=rng.uniform(1400.0, 1600.0, n), eta=10.0 ** rng.uniform(-1.0, 3.0, n))
+        rho=rng.uniform(1400.0, 1600.0, n), eta=10.0 ** rng.uniform(-1.0, 3.0, n),
+        gamma_dot=10.0 ** rng.uniform(-2.0, 2.0, n))
     state.mass = state.rho * DP**dim
     return state
 
 
-def apply(s, u, homogeneous=True):
+def apply(s, u, homogeneous=True, mean=MEAN_HARMONIC):
     out = np.zeros((s.n, s.x.shape[1]))
     coef, e = np.zeros(len(s.nbr)), np.zeros((len(s.nbr), 3))
-    viscous_pairs(s.n, s.start, s.nbr, s.x, s.rho, s.eta, s.mass, s.kind, s.normal, s.wall_distance, 1.5,
-                  2.0 * (s.x.shape[1] + 2), s.k.params, coef, e)
+    viscous_pairs(s.n, s.start, s.nbr, s.x, s.rho, s.eta, s.gamma_dot, s.mass, s.kind, s.normal, s.wall_distance,
+                  1.5, 2.0 * (s.x.shape[1] + 2), mean, s.k.params, coef, e)
     viscous_acceleration(s.n, s.start, s.nbr, s.kind, coef, e, u, homogeneous, out)
     return out
 
 
+@pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_operator_is_the_explicit_pair_term_of_eq_27(dim):
+def test_operator_is_the_explicit_pair_term_of_eq_27(dim, mean):
     s = bed_lattice(dim, WALL)
     zeros = np.zeros(s.n)
     explicit = np.zeros((s.n, dim))
-    momentum(s.n, s.start, s.nbr, s.x, s.v, s.rho, zeros, s.eta, np.zeros((0, 1, 1)), s.mass, s.kind, s.normal,
-             s.wall_distance, 1.5, 0.0, 1.0, 2.0 * (dim + 2), s.k.params, explicit)
-    np.testing.assert_allclose(apply(s, s.v, homogeneous=False), explicit, rtol=0, atol=1e-12 * np.abs(explicit).max())
+    momentum(s.n, s.start, s.nbr, s.x, s.v, s.rho, zeros, s.eta, s.gamma_dot, np.zeros((0, 1, 1)), s.mass, s.kind,
+             s.normal, s.wall_distance, 1.5, 0.0, 1.0, 2.0 * (dim + 2), mean, s.k.params, explicit)
+    implicit = apply(s, s.v, homogeneous=False, mean=mean)
+    np.testing.assert_allclose(implicit, explicit, rtol=0, atol=1e-12 * np.abs(explicit).max())
 
 
+@pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
 @pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_mass_weighted_operator_is_symmetric_and_dissipative(dim, bed_kind):
+def test_mass_weighted_operator_is_symmetric_and_dissipative(dim, bed_kind, mean):
     s = bed_lattice(dim, bed_kind)
     rng = np.random.default_rng(2)
     moving = (s.kind == MOVING)[:, None]
     p, q = (np.where(moving, rng.normal(size=(s.n, dim)), 0.0) for _ in range(2))
     m = s.mass[:, None]
-    pAq, qAp, pAp = np.sum(p * m * apply(s, q)), np.sum(q * m * apply(s, p)), np.sum(p * m * apply(s, p))
+    pAq, qAp, pAp = (np.sum(a * m * apply(s, b, mean=mean)) for a, b in ((p, q), (q, p), (p, p)))
     assert pAq == pytest.approx(qAp, rel=1e-12)
     assert pAp < 0.0
 
@@ -86,17 +91,18 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind):
     tolerance and takes kinetic energy out, never in."""
     s = bed_lattice(dim, bed_kind)
     dt = 1000.0 * 0.05 * s.rho.min() * s.k.h**2 / s.eta.max()
-    pa = SimpleNamespace(n_owned=s.n, dim=dim, v=s.v.copy(), rho=s.rho, eta=s.eta, mass=s.mass, kind=s.kind,
+    pa = SimpleNamespace(n_owned=s.n, dim=dim, v=s.v.copy(), rho=s.rho, eta=s.eta, gamma_dot=s.gamma_dot,
+                         mass=s.mass, kind=s.kind,
                          normal=s.normal, wall_distance=s.wall_distance, viscous_direction=np.zeros((s.n, dim)))
     ctx = SimpleNamespace(particles=pa, start=s.start, nbr=s.nbr, xc=s.x, kernel=s.k, workspace=Workspace(),
                           halo=NoHalo())
     ctx.refresh = lambda names: None
-    scheme = SimpleNamespace(corrected=False, beta_max=1.5, viscous_factor=2.0 * (dim + 2))
+    scheme = SimpleNamespace(corrected=False, beta_max=1.5, viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
     solver = ImplicitViscosity(scheme, u_ref=1.0)
     solver.kick(ctx, dt)
     u, b = pa.v, s.v
     moving = s.kind == MOVING
-    error = (u - dt * apply(s, u, homogeneous=False) - b)[moving]
+    error = (u - dt * apply(s, u, homogeneous=False, mean=MEAN_SECANT) - b)[moving]
     rms = np.sqrt(np.sum(s.mass[moving, None] * error**2) / s.mass[moving].sum())
     assert 2 < solver.iterations < 200
     assert rms < 50 * TOLERANCE  # the stop is on the preconditioned residual

@@ -10,7 +10,8 @@ from mpisph import references
 from mpisph.errors import InputError
 from mpisph.materials import MuIGranular
 from mpisph.physics.mu_i import momentum, strain_rate, viscous_force_tensor
-from mpisph.physics.mu_i_law import friction, grain_density_ratio, regularised_viscosity, residual_viscosity
+from mpisph.physics.mu_i_law import (MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT, friction, grain_density_ratio,
+                                     pair_viscosity, regularised_viscosity, residual_viscosity)
 from mpisph.correction import correction_matrix
 from mpisph.tensors import size
 
@@ -183,8 +184,8 @@ def viscous_acceleration(dim, h_over_dp, corrected):
                     gamma_dot)
         T = np.zeros((n, dim, dim))
         viscous_force_tensor(n, kind, strain, eta, B, T)
-    momentum(n, start, nbr, x, v, rho, zeros, eta, T, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0,
-             2.0 * (dim + 2), k.params, acc)
+    momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, T, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0,
+             2.0 * (dim + 2), MEAN_HARMONIC, k.params, acc)
     return acc[inner, 0] / (2 * 2.0 / 1000.0)
 
 
@@ -200,3 +201,25 @@ def test_pair_viscosity_of_eq_27_takes_2_d_plus_2(dim):
 @pytest.mark.parametrize("dim", [2, 3])
 def test_corrected_viscous_stress_is_exact_at_the_papers_resolution(dim):
     np.testing.assert_allclose(viscous_acceleration(dim, 1.3, True), 1.0, rtol=1e-9)
+
+
+def test_pair_viscosity_at_the_free_surface_and_next_to_grains_at_rest():
+    """eta = mu p / gamma_dot with a hydrostatic p: the harmonic mean of Eq. 37 vanishes with the
+    surface grain's viscosity, the arithmetic and secant means do not (the arithmetic one is the
+    midpoint value); next to a grain at rest (eta_max, a small strain rate) the arithmetic mean
+    takes half of eta_max, the secant one stays near the flowing grain's."""
+    mu, gamma_dot, rho_g = 0.6, 5.0, 1560.0 * 9.81
+    eta = lambda depth: mu * rho_g * depth / gamma_dot  # noqa: E731
+    for surface, below in ((0.0, 0.003), (0.003, 0.006), (0.01, 0.013)):
+        pair = pair_viscosity(1.0, eta(surface), eta(below), gamma_dot, gamma_dot, MEAN_ARITHMETIC)
+        assert pair == pytest.approx(eta(0.5 * (surface + below)), rel=1e-12)
+        secant = pair_viscosity(1.0, eta(surface), eta(below), gamma_dot, gamma_dot, MEAN_SECANT)
+        assert secant == pytest.approx(pair, rel=1e-12)  # one strain rate: the two agree
+    assert pair_viscosity(1.0, eta(0.0), eta(0.003), gamma_dot, gamma_dot, MEAN_HARMONIC) == 0.0
+    flowing, at_rest = (10.0, 50.0), (900.0, 0.01)  # (eta, gamma_dot)
+    assert pair_viscosity(1.0, flowing[0], at_rest[0], flowing[1], at_rest[1], MEAN_ARITHMETIC) == 455.0
+    secant = pair_viscosity(1.0, flowing[0], at_rest[0], flowing[1], at_rest[1], MEAN_SECANT)
+    assert flowing[0] < secant < 1.2 * flowing[0]
+    for mean in (MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT):
+        assert pair_viscosity(3.0, 2.0, 2.0, 1.0, 4.0, mean) == pytest.approx(6.0, rel=1e-15)
+    assert pair_viscosity(1.0, 2.0, 4.0, 0.0, 0.0, MEAN_SECANT) == 3.0  # neither strained: arithmetic

@@ -10,7 +10,9 @@ per second of collapse. With ``viscous_step = implicit`` the kick solves
 for v(n+1), the viscosity, densities and positions frozen at n + 1/2 (the
 state the explicit forces use), a_visc the pair term of Eq. 27:
 
-    a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j).
+    a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j),
+
+eta_ij the scheme's pair viscosity (mu_i_law.pair_viscosity).
 
 This is backward Euler for the viscous part: first order in time for it,
 stable for any dt and damping the stiffest modes (the resting grains move as a
@@ -42,6 +44,7 @@ from ..neighbours import pair_offset
 from ..particles import MOVING, WALL, is_wall
 from ..parallel.exact_sum import global_sums
 from ..tensors import adjugate
+from .mu_i_law import pair_viscosity
 from .walls import morris_beta
 
 TOLERANCE = 1e-7  # of the reference speed, RMS over the particles
@@ -50,7 +53,8 @@ MAX_ITERATIONS = 2000
 
 
 @njit(cache=True)
-def viscous_pairs(n, start, nbr, xc, rho, eta, mass, kind, normal, wall_distance, beta_max, factor, k, coef, e):
+def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor, mean,
+                  k, coef, e):
     """The pair term of Eq. 27 as a_visc[u]_i = sum_s coef_s e_s (e_s . (u_i - u_j)) over the
     neighbour list: e_s = r_ij (a free-slip wall partner: (r_ij . n) n) and coef_s <= 0, beta of
     Eq. 36 included for wall partners."""
@@ -61,13 +65,14 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, mass, kind, normal, wall_distance
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
-            rho_j, eta_j = rho[j], eta[j]
+            rho_j, eta_j, gamma_dot_j = rho[j], eta[j], gamma_dot[j]
             if is_wall(kind[j]):  # off the common path
-                rho_j, eta_j = rho[i], eta[i]
+                rho_j, eta_j, gamma_dot_j = rho[i], eta[i], gamma_dot[i]
             eta_sum = eta[i] + eta_j
             c = 0.0
             if eta_sum > 0.0:
-                c = mass[j] * pair_dw(k, r, i, j) / r * factor * 2.0 * eta[i] * eta_j / eta_sum / (r * r * rho[i] * rho_j)
+                c = mass[j] * pair_dw(k, r, i, j) / r * pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) \
+                    / (r * r * rho[i] * rho_j)
             if is_wall(kind[j]):
                 c *= morris_beta(i, j, xc, normal, wall_distance, beta_max)
                 if kind[j] != WALL:  # free slip: normal relative velocity, force along the normal
@@ -213,8 +218,8 @@ class ImplicitViscosity:
         if self.total_mass is None:
             moving = (pa.kind[:n] == MOVING)[None, :]
             self.total_mass = global_sums(comm, np.where(moving, pa.mass[:n][None, :], 0.0))[0]
-        viscous_pairs(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.mass, pa.kind, pa.normal, pa.wall_distance,
-                      s.beta_max, s.viscous_factor, ctx.kernel.params, coef, e)
+        viscous_pairs(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.gamma_dot, pa.mass, pa.kind, pa.normal,
+                      pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, coef, e)
         preconditioner(n, ctx.start, pa.kind, pa.mass, coef, e, dt, inverse)
         viscous_acceleration(n, ctx.start, ctx.nbr, pa.kind, coef, e, pa.v, False, a_visc)
         residual(n, pa.kind, pa.mass, dt, a_visc, r, inverse, z, p, terms)

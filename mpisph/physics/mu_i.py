@@ -10,7 +10,9 @@ grad_i W_ij = W' r_ij / r, W' <= 0, kernels.py), with v_ij = v_i - v_j:
     momentum       dv_i/dt = g - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij
                              + sum_j m_j 2 (D + 2) eta_ij (v_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j)
                                                                                (Eqs. 27, 37)
-    eta_ij         2 eta_i eta_j / (eta_i + eta_j), the harmonic mean (Eq. 37)
+    eta_ij         2 eta_i eta_j / (eta_i + eta_j), the harmonic mean (Eq. 37), or
+                   with the option viscosity_mean the arithmetic mean or the
+                   secant viscosity of the pair's mean state (mu_i_law.pair_viscosity)
     Pi_ij          -alpha h c0 (v_ij . r_ij) / (rho_bar r^2)                   (Eq. 38)
 
 Eq. 27 prints the factor 8 of the viscous term for its 2D runs: the Cleary /
@@ -58,7 +60,7 @@ from ..scheme import Scheme
 from ..tensors import component
 from .fluid import density_summation
 from .implicit_viscosity import ImplicitViscosity
-from .mu_i_law import friction, grain_density_ratio, inertial_number, regularised_viscosity
+from .mu_i_law import friction, grain_density_ratio, inertial_number, pair_viscosity, regularised_viscosity
 from .walls import morris_relative_velocity
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
@@ -141,8 +143,8 @@ def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
 
 
 @njit(cache=True)
-def momentum(n, start, nbr, xc, v, rho, p, eta, T, mass, kind, normal, wall_distance, beta_max, alpha, c0,
-             viscous_factor, k, acc):
+def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal, wall_distance, beta_max, alpha,
+             c0, viscous_factor, mean, k, acc):
     """acc += the pressure, artificial-viscosity and viscous accelerations (004_ Eqs. 27, 37-38);
     with ``T`` (``T.shape[0] > 0``) the viscous part is the corrected stress divergence
     sum_j m_j (T_i/rho_i^2 + T_j/rho_j^2) grad_i W_ij instead of the pair term of Eq. 27."""
@@ -157,10 +159,10 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, T, mass, kind, normal, wall_dist
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
-            rho_j, p_j, eta_j, tj = rho[j], p[j], eta[j], j
+            rho_j, p_j, eta_j, gamma_dot_j, tj = rho[j], p[j], eta[j], gamma_dot[j], j
             if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
-                rho_j, p_j, eta_j, tj = rho[i], p[i], eta[i], i
+                rho_j, p_j, eta_j, gamma_dot_j, tj = rho[i], p[i], eta[i], gamma_dot[i], i
             rho_j2 = rho_j * rho_j
             vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
             pi_ij = -alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))
@@ -168,7 +170,8 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, T, mass, kind, normal, wall_dist
             if not corrected:
                 eta_sum = eta[i] + eta_j
                 if eta_sum > 0.0:
-                    scalar += viscous_factor * 2.0 * eta[i] * eta_j / eta_sum * vr_r2 / (rho[i] * rho_j)
+                    scalar += pair_viscosity(viscous_factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) * vr_r2 \
+                        / (rho[i] * rho_j)
             f = mass[j] * pair_dw(k, r, i, j) / r
             a0 += f * scalar * d0
             a1 += f * scalar * d1
@@ -236,13 +239,14 @@ class GranularMomentum(ForceTerm):
 
     def add(self, ctx, acc):
         pa, s = ctx.particles, self.scheme
-        momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, s.force_tensors(pa), pa.mass,
-                 pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
-                 0.0 if s.implicit else s.viscous_factor, ctx.kernel.params, acc)
+        momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, s.force_tensors(pa),
+                 pa.mass, pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
+                 0.0 if s.implicit else s.viscous_factor, s.mean, ctx.kernel.params, acc)
 
 
 VISCOUS_FORMS = ("cleary", "corrected_stress")
 VISCOUS_STEPS = ("explicit", "implicit")
+VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_law's MEAN_* codes
 
 
 class MuIScheme(Scheme):
@@ -257,13 +261,16 @@ class MuIScheme(Scheme):
     viscous stress 2 eta eps from the corrected gradient and its divergence with
     the correction matrix (module docstring), and ``viscous_step``: ``explicit``
     (Eq. 39's viscous limit bounds the step) or ``implicit``, the pair term
-    taken backward in time in the kick (implicit_viscosity.py).
+    taken backward in time in the kick (implicit_viscosity.py), and
+    ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
+    (mu_i_law.pair_viscosity; ghosts then need gamma_dot too).
     """
 
     name = "mu_i"
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
-    options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit"}
+    options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
+               "viscosity_mean": "harmonic"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
@@ -276,6 +283,10 @@ class MuIScheme(Scheme):
         if self.option("viscous_step") not in VISCOUS_STEPS:
             raise InputError(f"scheme mu_i: viscous_step must be one of {', '.join(VISCOUS_STEPS)}, "
                              f"not {self.option('viscous_step')!r}")
+        if self.option("viscosity_mean") not in VISCOSITY_MEANS:
+            raise InputError(f"scheme mu_i: viscosity_mean must be one of {', '.join(VISCOSITY_MEANS)}, "
+                             f"not {self.option('viscosity_mean')!r}")
+        self.mean = VISCOSITY_MEANS.index(self.option("viscosity_mean"))
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -292,7 +303,7 @@ class MuIScheme(Scheme):
             Field("rho_s", (), np.float64, "grain density [kg/m^3]"),
             Field("wall_distance", (), np.float64, "distance behind the wall surface (walls only) [m]"),
         )
-        self.state_fields = ("p", "eta")
+        self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == VISCOSITY_MEANS.index("secant") else ())
         if self.corrected:
             self.fields += (
                 Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),

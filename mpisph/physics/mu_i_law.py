@@ -143,3 +143,31 @@ def regularised_viscosity(p, gamma_dot, I, rho_s, d, m):
     g = m.m_0 if q < 1e-8 else -math.expm1(-q) / gamma_dot
     e0g = eta_0 * gamma_dot
     return (tau_y + e0g) * (m.tau_0 * g + eta_0) / (m.tau_0 + e0g)
+
+
+MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT = 0, 1, 2
+
+
+@njit(inline="always")
+def pair_viscosity(factor, eta_i, eta_j, gamma_dot_i, gamma_dot_j, mean):
+    """``factor`` times the viscosity eta_ij that a pair (i, j) carries in the pair term of Eq. 27
+    (eta_i + eta_j > 0), which stands for the shear flux eta (v_j - v_i) / r at the pair's midpoint:
+
+    - MEAN_HARMONIC, 2 eta_i eta_j / (eta_i + eta_j), Eq. 37 as printed. It vanishes with either
+      particle's viscosity: a grain at the free surface (p = 0, so eta = mu p / gamma_dot = 0) feels
+      no shear stress from the grains under it, where the continuum has mu rho g dp/2 between the
+      two, and the surface layer slides on the pile without friction.
+    - MEAN_ARITHMETIC, (eta_i + eta_j) / 2: the midpoint value of a viscosity linear in the
+      pressure (a hydrostatic p at one strain rate), but dominated by the larger one: next to a
+      grain at rest, whose regularised viscosity is eta_max, a flowing grain is held by eta_max / 2.
+    - MEAN_SECANT, (eta_i gamma_dot_i + eta_j gamma_dot_j) / (gamma_dot_i + gamma_dot_j): the mean
+      shear stress of the two over their mean strain rate, the secant viscosity of the pair's mean
+      state. It is eta where both agree, stays positive at the free surface (the stress below over
+      the mean rate), and next to a grain at rest (a small stress eta_max gamma_dot) it is about
+      the flowing grain's own; the arithmetic mean where neither is strained.
+    """
+    if mean == MEAN_HARMONIC:
+        return factor * 2.0 * eta_i * eta_j / (eta_i + eta_j)
+    if mean == MEAN_SECANT and gamma_dot_i + gamma_dot_j > 0.0:
+        return factor * (eta_i * gamma_dot_i + eta_j * gamma_dot_j) / (gamma_dot_i + gamma_dot_j)
+    return factor * 0.5 * (eta_i + eta_j)
