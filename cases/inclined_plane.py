@@ -13,6 +13,7 @@ import math
 
 from mpisph.case import Body, Case, MuIGranular, Param, Wall
 from mpisph.geometry import bed, box, support_layers
+from mpisph.granular_flow import mu_i_params, mu_i_scheme
 from mpisph.references import inclined_plane_surface_velocity
 
 PARAMS = {
@@ -31,15 +32,7 @@ PARAMS = {
     "K_t": Param(1.5e-5, "1/Pa", "grain compressibility (Eq. 41)", positive=True),
     "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55)", positive=True),
     "m_0": Param(1.0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
-    "alpha": Param(0.0, "-", "artificial viscosity (Eq. 38; 004_ Fig. 6 also uses 0.05)"),
-    "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
-    "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress divergence",
-                          choices=("cleary", "corrected_stress")),
-    "viscous_step": Param("explicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
-                          "the viscous term backward in time (physics/implicit_viscosity.py)",
-                          choices=("explicit", "implicit")),
-    "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or secant "
-                            "(mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
+    **mu_i_params("004_ Fig. 6 also uses 0.05", "explicit"),
     "density_reinit": Param("none", "-", "density reinitialisation by kernel summation (001_ Eq. 8) every "
                             "configuration", choices=("none", "inner", "free_surface")),
     "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
@@ -74,11 +67,7 @@ def setup(p):
         domain=((0.0, -layers * p.dp), (length, 2.0 * p.H)),
         dp=p.dp,
         material=material,
-        scheme="mu_i",
-        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                        "viscous_step": p.viscous_step,
-                        "viscosity_mean": p.viscosity_mean},
-        integrator="symplectic_verlet",
+        **mu_i_scheme(p),
         bodies=[Body("grains", grains, pressure=pressure)],
         walls=[Wall("bed", bed_x, bed_normal, distance=bed_depth)],
         gravity=(p.g * sin, -p.g * cos),

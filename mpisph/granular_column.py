@@ -18,6 +18,7 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 import math
 
 from .case import Body, Front, MuIGranular, Param
+from .granular_flow import mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS
 
 SAND = MU_I_MATERIALS["sand_0.4mm"]
@@ -42,15 +43,7 @@ def column_params(a, dp, m_0):
         "tau_0": Param(0.0, "Pa", "reference yield stress of the regularisation (Eq. 55); 0: mu_s phi_max "
                        "rho_s0 g H_0"),
         "m_0": Param(m_0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
-        "alpha": Param(0.0, "-", "artificial viscosity (Eq. 38; 004_ uses none for the collapses)"),
-        "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
-        "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress "
-                              "divergence", choices=("cleary", "corrected_stress")),
-        "viscous_step": Param("implicit", "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: "
-                              "the viscous term backward in time (physics/implicit_viscosity.py)",
-                              choices=("explicit", "implicit")),
-        "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or secant "
-                                "(mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
+        **mu_i_params("004_ uses none for the collapses", "implicit"),
         "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; "
                                "dual: 001_ Eqs. 9-11", choices=("dual", "single")),
         "diagnostics_every": Param(100, "steps", "steps between rows of diagnostics.csv", positive=True),
@@ -69,7 +62,7 @@ def sand(p, H0):
 
 def column_case_settings(p, material, column, H0, front_axes):
     """Case keywords shared by the collapses: the column body at rest under hydrostatic pressure,
-    the mu_i scheme and its options, symplectic Verlet, the front gauge and the reference speed
+    the mu_i scheme with its options (granular_flow.py), the front gauge and the reference speed
     sqrt(g H0)."""
     pressure = material.rho0 * p.g * (H0 - column[:, -1])
     dim = column.shape[1]
@@ -77,11 +70,7 @@ def column_case_settings(p, material, column, H0, front_axes):
         dim=dim,
         dp=p.dp,
         material=material,
-        scheme="mu_i",
-        scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                        "viscous_step": p.viscous_step,
-                        "viscosity_mean": p.viscosity_mean},
-        integrator="symplectic_verlet",
+        **mu_i_scheme(p),
         bodies=[Body("column", column, pressure=pressure)],
         gravity=(0.0,) * (dim - 1) + (-p.g,),
         front=Front((0.0,) * dim, front_axes),
