@@ -13,12 +13,19 @@ class BlowUp(Exception):
     """The simulation produced a non-finite value or lost a particle.
 
     Carries where it happened so the message names step, time, rank and
-    particle id.
+    particle id (rank and gid None when no one particle is to blame).
     """
 
-    def __init__(self, message, *, step, time, rank, gid):
+    def __init__(self, message, *, step, time, rank=None, gid=None):
         super().__init__(message)
         self.step = step
         self.time = time
         self.rank = rank
         self.gid = gid
+
+
+class NoConvergence(Exception):
+    """An iterative solve inside a time step did not converge. Its decisions rest on
+    partition-independent sums, so every rank raises it at the same iteration; the solver
+    turns it into a BlowUp that names the step."""
+

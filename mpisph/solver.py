@@ -37,7 +37,7 @@ from mpi4py import MPI
 from . import surface
 from .blowup import PROBLEMS, first_bad_particle
 from .context import StepContext
-from .errors import BlowUp
+from .errors import BlowUp, NoConvergence
 from .io.frames import frame_path, write_frame
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
@@ -169,7 +169,13 @@ class Simulation:
                 else:
                     last = False
                 with self.timer("physics"):
-                    self.parts.integrator.step(self.ctx, dt)
+                    try:
+                        self.parts.integrator.step(self.ctx, dt)
+                    except NoConvergence as e:
+                        self.frame_index += 1  # after the last regular frame, not over it
+                        self.write_frame()
+                        raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {e}; last frame written",
+                                     step=self.step, time=self.t) from None
                 self.step += 1
                 self.t = t_stop if last else self.t + dt
                 self.dt = dt

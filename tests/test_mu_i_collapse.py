@@ -80,3 +80,18 @@ def test_bad_settings_are_one_line_errors(tmp_path, settings, words):
     assert r.returncode == 2
     assert r.stderr.strip().startswith("mpisph: error:") and words in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_implicit_kick_that_does_not_converge_stops_the_run_with_one_line(tmp_path, monkeypatch, capsys):
+    """With the iteration cap cut to 1 the first kick fails: the run stops as a blow-up (exit 3)
+    after writing its last frame, with one line that says why."""
+    from mpisph.__main__ import main
+    from mpisph.physics import implicit_viscosity
+
+    monkeypatch.setattr(implicit_viscosity, "MAX_ITERATIONS", 1)
+    code = main(["lube_collapse_2d", "--set", "dp=0.01", "--t-end", "0.01", "--out", str(tmp_path), "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert code == 3
+    assert err.startswith("mpisph: blow-up at step 0") and "did not converge in 1 conjugate-gradient" in err
+    assert len(err.splitlines()) == 1
+    assert len(list_frames(tmp_path)) == 2  # the initial frame and the one at the failure

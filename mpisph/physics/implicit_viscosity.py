@@ -38,7 +38,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
+from ..errors import InputError, NoConvergence
 from ..kernels import pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING, WALL, is_wall
@@ -237,5 +237,5 @@ class ImplicitViscosity:
             rz_new = global_sums(comm, terms)[0]
             new_direction(n, pa.kind, rz_new / rz, z, p)
             rz = rz_new
-        raise RuntimeError(f"implicit viscous step: no convergence in {MAX_ITERATIONS} conjugate-gradient "
-                           f"iterations (RMS residual {math.sqrt(rz / self.total_mass):.3g} m/s)")
+        raise NoConvergence(f"the implicit viscous kick did not converge in {MAX_ITERATIONS} conjugate-gradient "
+                            f"iterations (RMS residual {math.sqrt(rz / self.total_mass):.3g} m/s)")
