@@ -99,7 +99,9 @@ def front_position(frame, dp, radial=False, sectors=16):
     r, sector = _polar(x, sectors)
     edges = _sector_runouts(r, sector, dp, sectors)
     at_front = (r >= edges[sector] - dp) & (r < edges[sector])
-    return float(np.mean([r[at_front & (sector == s)].max() for s in range(sectors) if np.any(at_front & (sector == s))]))
+    farthest = np.full(sectors, -np.inf)
+    np.maximum.at(farthest, sector[at_front], r[at_front])
+    return float(farthest[np.isfinite(farthest)].mean())
 
 
 def deposit_height(frame, dp, x_max):

@@ -65,20 +65,18 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
-            rho_j, eta_j, gamma_dot_j = rho[j], eta[j], gamma_dot[j]
-            if is_wall(kind[j]):  # off the common path
+            rho_j, eta_j, gamma_dot_j, beta = rho[j], eta[j], gamma_dot[j], 1.0
+            if is_wall(kind[j]):  # off the common path: the partner takes i's state
                 rho_j, eta_j, gamma_dot_j = rho[i], eta[i], gamma_dot[i]
-            eta_sum = eta[i] + eta_j
-            c = 0.0
-            if eta_sum > 0.0:
-                c = mass[j] * pair_dw(k, r, i, j) / r * pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) \
-                    / (r * r * rho[i] * rho_j)
-            if is_wall(kind[j]):
-                c *= morris_beta(i, j, xc, normal, wall_distance, beta_max)
+                beta = morris_beta(i, j, xc, normal, wall_distance, beta_max)
                 if kind[j] != WALL:  # free slip: normal relative velocity, force along the normal
                     dn = d0 * normal[j, 0] + d1 * normal[j, 1] + (d2 * normal[j, 2] if dim == 3 else 0.0)
                     d0, d1 = dn * normal[j, 0], dn * normal[j, 1]
                     d2 = dn * normal[j, 2] if dim == 3 else 0.0
+            c = 0.0
+            if eta[i] + eta_j > 0.0:
+                eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
+                c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
             coef[s] = c
             e[s, 0] = d0
             e[s, 1] = d1
@@ -134,21 +132,30 @@ def preconditioner(n, start, kind, mass, coef, e, dt, inverse):
                 inverse[i, a, b] = adj[a, b] / det
 
 
+@njit(inline="always")
+def _precondition(i, inverse, r, z):
+    """z_i = inverse_i r_i; returns r_i . z_i."""
+    dim = r.shape[1]
+    rz = 0.0
+    for a in range(dim):
+        z[i, a] = 0.0
+        for b in range(dim):
+            z[i, a] += inverse[i, a, b] * r[i, b]
+        rz += r[i, a] * z[i, a]
+    return rz
+
+
 @njit(cache=True)
 def residual(n, kind, mass, dt, a_visc, r, inverse, z, p, terms):
     """r = m dt a_visc[b] (the residual of the first guess u = b), z = p = inverse r, and the
     terms of r . z; zero rows for particles that do not move."""
     dim = r.shape[1]
     for i in range(n):
-        terms[0, i] = 0.0
         for a in range(dim):
             r[i, a] = mass[i] * dt * a_visc[i, a] if kind[i] == MOVING else 0.0
+        terms[0, i] = _precondition(i, inverse, r, z)
         for a in range(dim):
-            z[i, a] = 0.0
-            for b in range(dim):
-                z[i, a] += inverse[i, a, b] * r[i, b]
             p[i, a] = z[i, a]
-            terms[0, i] += r[i, a] * z[i, a]
 
 
 @njit(cache=True)
@@ -173,11 +180,7 @@ def advance(n, kind, alpha, p, q, u, r, inverse, z, terms):
         for a in range(dim):
             u[i, a] += alpha * p[i, a]
             r[i, a] -= alpha * q[i, a]
-        for a in range(dim):
-            z[i, a] = 0.0
-            for b in range(dim):
-                z[i, a] += inverse[i, a, b] * r[i, b]
-            terms[0, i] += r[i, a] * z[i, a]
+        terms[0, i] = _precondition(i, inverse, r, z)
 
 
 @njit(cache=True)

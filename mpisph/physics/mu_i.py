@@ -60,7 +60,8 @@ from ..scheme import Scheme
 from ..tensors import component
 from .fluid import density_summation
 from .implicit_viscosity import ImplicitViscosity
-from .mu_i_law import friction, grain_density_ratio, inertial_number, pair_viscosity, regularised_viscosity
+from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
+                       regularised_viscosity)
 from .walls import morris_relative_velocity
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
@@ -167,7 +168,7 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
             vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
             pi_ij = -alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))
             scalar = -(p[i] / rho_i2 + p_j / rho_j2 + pi_ij)
-            if not corrected:
+            if not corrected and viscous_factor > 0.0:  # 0: the implicit kick takes the viscous term
                 eta_sum = eta[i] + eta_j
                 if eta_sum > 0.0:
                     scalar += pair_viscosity(viscous_factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) * vr_r2 \
@@ -303,7 +304,7 @@ class MuIScheme(Scheme):
             Field("rho_s", (), np.float64, "grain density [kg/m^3]"),
             Field("wall_distance", (), np.float64, "distance behind the wall surface (walls only) [m]"),
         )
-        self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == VISCOSITY_MEANS.index("secant") else ())
+        self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == MEAN_SECANT else ())
         if self.corrected:
             self.fields += (
                 Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
