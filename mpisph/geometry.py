@@ -17,8 +17,23 @@ def support_layers(h_factor):
     return int(np.ceil(SUPPORT_FACTOR * h_factor))
 
 
+def lattice_layers(length, dp):
+    """How many lattice layers of spacing dp a side ``length`` long holds: floor(length / dp)."""
+    return int(np.floor(length / dp + 1e-9))
+
+
+def lattice_mismatch(symbol, length, dp):
+    """A one-line warning when the side ``symbol`` (``length`` long) is not a whole number of
+    spacings dp, so that its lattice fill falls short of it by up to dp; else None."""
+    n = lattice_layers(length, dp)
+    if abs(length / dp - n) <= 1e-6:
+        return None
+    return (f"{symbol} = {length:.4g} m is {length / dp:.4g} dp: the lattice fills {n} layers, {n * dp:.4g} m; "
+            f"choose dp = {symbol} / n for a whole number n")
+
+
 def _axis_points(lo, hi, dp, what):
-    n = int(np.floor((hi - lo) / dp + 1e-9))
+    n = lattice_layers(hi - lo, dp)
     if n < 1:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi - lo:g} m across)")
     return lo + (np.arange(n) + 0.5) * dp

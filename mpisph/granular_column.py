@@ -17,9 +17,10 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 
 import math
 
-from .case import Body, Front, MuIGranular, Param
+from .case import Body, Case, Front, MuIGranular, Param, Wall
+from .geometry import bed, box, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mu_i_params, mu_i_scheme
-from .references import MU_I_MATERIALS
+from .references import MU_I_MATERIALS, planar_runout
 
 SAND = MU_I_MATERIALS["sand_0.4mm"]
 MACH = 0.1  # 004_ Sec. 5.2, with U = sqrt(g H_0)
@@ -60,11 +61,13 @@ def sand(p, H0):
                        K_t=K_t, tau_0=tau_0, m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
 
 
-def column_case_settings(p, material, column, H0, front_axes):
-    """Case keywords shared by the collapses: the column body at rest under hydrostatic pressure,
-    the mu_i scheme with its options (granular_flow.py), the front gauge and the reference speed
-    sqrt(g H0)."""
-    pressure = material.rho0 * p.g * (H0 - column[:, -1])
+def column_case_settings(p, material, column, H0, front_axes, sides):
+    """Case keywords shared by the collapses: the column body at rest under the hydrostatic pressure
+    of its lattice fill, the mu_i scheme with its options (granular_flow.py), the front gauge, the
+    reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
+    not a whole number of dp, as the fill then changes the column's aspect ratio."""
+    top = lattice_layers(H0, p.dp) * p.dp
+    pressure = material.rho0 * p.g * (top - column[:, -1])
     dim = column.shape[1]
     return dict(
         dim=dim,
@@ -75,4 +78,32 @@ def column_case_settings(p, material, column, H0, front_axes):
         gravity=(0.0,) * (dim - 1) + (-p.g,),
         front=Front((0.0,) * dim, front_axes),
         u_ref=math.sqrt(p.g * H0),
+        warnings=[w for w in (lattice_mismatch(k, v, p.dp) for k, v in sides.items()) if w],
+    )
+
+
+def planar_column(p, L0, back_wall_slip, across=None):
+    """The planar collapse: a column L0 long and H_0 = a L0 high against a back wall at x = 0 on a
+    no-slip floor that reaches L0 (1 + 3 f(a)) (f: references.planar_runout), in 2D, or with
+    ``across`` (a width) in 3D as a slab periodic along y."""
+    H0 = p.a * L0
+    layers = support_layers(p.h_factor)
+    margin = layers * p.dp
+    floor_end = L0 * (1.0 + 3.0 * float(planar_runout(p.a))) + margin  # room for grains thrown ahead
+
+    def at(x, z, y=0.0):
+        """A point (x, z) in 2D, (x, y, z) in 3D."""
+        return (x, z) if across is None else (x, y, z)
+
+    column = box(at(0.0, 0.0), at(L0, H0, across), p.dp, "the column")
+    floor_x, floor_n, floor_d = bed(at(-margin, 0.0)[:-1], at(floor_end, 0.0, across)[:-1], p.dp, layers)
+    back = box(at(-margin, 0.0), at(0.0, H0 + margin, across), p.dp, "the back wall")
+    back_n = back * 0.0
+    back_n[:, 0] = 1.0
+    return Case(
+        domain=(at(-margin, -margin), at(floor_end + margin, 1.5 * H0 + margin, across)),
+        periodic=(False, True, False) if across else (False, False),
+        walls=[Wall("floor", floor_x, floor_n, distance=floor_d),
+               Wall("back_wall", back, back_n, slip=back_wall_slip, distance=-back[:, 0])],
+        **column_case_settings(p, sand(p, H0), column, H0, front_axes=(0,), sides={"H_0": H0, "L_0": L0}),
     )

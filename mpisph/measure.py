@@ -38,11 +38,12 @@ def nearest_value(frame, name, point, count=4):
 
 
 def _surface_profile(x, dp):
-    """Bins of width dp along x from the leftmost particle: (left edges, top y + dp/2, occupied)."""
+    """Bins of width dp along x from the leftmost particle: (left edges, top + dp/2, occupied); the
+    height is the last coordinate (y in 2D, z in 3D, where a slab's bins span its width)."""
     lo = x[:, 0].min()
     k = np.floor((x[:, 0] - lo) / dp).astype(int)
     top = np.full(k.max() + 1, -np.inf)
-    np.maximum.at(top, k, x[:, 1])
+    np.maximum.at(top, k, x[:, -1])
     return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top)
 
 
@@ -105,9 +106,9 @@ def front_position(frame, dp, radial=False, sectors=16):
 
 
 def deposit_height(frame, dp, x_max):
-    """Highest free surface (top particle + dp/2) among particles with x < x_max."""
+    """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x < x_max."""
     x = frame["x"]
-    return float(x[x[:, 0] < x_max, 1].max() + 0.5 * dp)
+    return float(x[x[:, 0] < x_max, -1].max() + 0.5 * dp)
 
 
 def crest_crack(first, last, dp, face, drop):

@@ -89,9 +89,31 @@ def test_implicit_kick_that_does_not_converge_stops_the_run_with_one_line(tmp_pa
     from mpisph.physics import implicit_viscosity
 
     monkeypatch.setattr(implicit_viscosity, "MAX_ITERATIONS", 1)
-    code = main(["lube_collapse_2d", "--set", "dp=0.01", "--t-end", "0.01", "--out", str(tmp_path), "--quiet"])
+    code = main(["lube_collapse_2d", "--set", "dp=0.00972", "--t-end", "0.01", "--out", str(tmp_path), "--quiet"])
     err = capsys.readouterr().err.strip()
     assert code == 3
     assert err.startswith("mpisph: blow-up at step 0") and "did not converge in 1 conjugate-gradient" in err
     assert len(err.splitlines()) == 1
     assert len(list_frames(tmp_path)) == 2  # the initial frame and the one at the failure
+
+
+@pytest.mark.parametrize("case, dp, warned", [
+    ("lube_collapse_3d", 0.0972 / 10, ["H_0"]),  # a = 0.55: H_0 / dp = 5.5, the fill has 5 layers
+    ("lube_collapse_3d", 0.0972 / 20, []),  # 11 layers
+    ("lube_collapse_2d", 0.0972 / 30, []),  # a = 0.9: 27 layers, 30 columns
+    ("lube_collapse_2d", 0.005, ["H_0", "L_0"]),
+])
+def test_a_column_that_is_not_whole_layers_is_warned_and_starts_hydrostatic(case, dp, warned):
+    """The lattice fills floor(H_0 / dp) layers: a column whose height (or planar length) is not a
+    whole number of dp has another aspect ratio, which the run's warnings say; the initial pressure
+    is hydrostatic below the top of the fill, so the top layer starts at half a layer's weight."""
+    from mpisph.case import build_case, load_case_module, resolve_params
+
+    module = load_case_module(case)
+    built = build_case(module, resolve_params(module, {"dp": repr(dp)}))
+    assert [w.split(" =")[0] for w in built.warnings] == warned
+    column = built.bodies[0]
+    z = column.x[:, -1]
+    top = z == z.max()
+    rho0, g = built.material.rho0, 9.81
+    np.testing.assert_allclose(column.pressure[top], rho0 * g * 0.5 * dp, rtol=1e-12)
