@@ -2,7 +2,8 @@
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
 ``mpisph: error: ...`` on stderr and status 2 before anything is written; a
-blow-up writes a last frame and ends with status 3.
+blow-up writes a last frame and ends with status 3. SIGTERM or SIGUSR1 (parallel/stop.py) ends
+a run after the current step with a frame, a line that says how to restart, and status 0.
 """
 
 import argparse
@@ -11,7 +12,7 @@ import sys
 import tempfile
 import time
 
-from .errors import BlowUp, InputError
+from .errors import BlowUp, InputError, Stopped
 
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
@@ -123,6 +124,7 @@ def run(args, comm):
     from .io.diagnostics import Diagnostics
     from .io.frames import check_frame, read_frame
     from .observables import observable_names
+    from .parallel.stop import StopOnSignal
     from .parts import make_parts
     from .progress import Progress
     from .solver import Simulation
@@ -151,18 +153,26 @@ def run(args, comm):
     restarted, frame = frame is not None, None  # the global arrays of the frame are not kept either
     out_dir = args.out or os.path.join("runs", args.case)
     progress = Progress(comm, quiet=args.quiet)
+    stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
-                     diagnostics=None, progress=progress)
+                     diagnostics=None, progress=progress, stop=stop)
     _prepare_out_dir(comm, out_dir)
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front),
                                   append=restarted, restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step
+    stopped = None
     try:
         sim.run()
+    except Stopped as e:
+        stopped = e
     finally:
+        stop.close()
         sim.diagnostics.close()
-    progress.finish(sim, time.perf_counter() - wall0, step0)
+    progress.finish(sim, time.perf_counter() - wall0, step0, ended="stopped" if stopped else "done")
+    if stopped and comm.rank == 0:
+        print(f"mpisph: {stopped}; frame {stopped.frame} written; continue with: mpirun -n {comm.size} python -m "
+              f"mpisph {args.case} --restart {stopped.frame} --out {out_dir}", flush=True)
 
 
 def main(argv=None):

@@ -29,3 +29,15 @@ class NoConvergence(Exception):
     partition-independent sums, so every rank raises it at the same iteration; the solver
     turns it into a BlowUp that names the step."""
 
+
+
+class Stopped(Exception):
+    """The run was asked to stop by a signal (parallel/stop.py) and wrote its state as a
+    frame; the command line prints how to restart from it and exits with status 0."""
+
+    def __init__(self, signal_name, *, step, time, frame):
+        super().__init__(f"stopped by {signal_name} at step {step}, t = {time:.6g} s")
+        self.signal_name = signal_name
+        self.step = step
+        self.time = time
+        self.frame = frame

@@ -42,8 +42,9 @@ class Progress:
                   f"wall {wall:8.1f} s  ETA {eta:8.1f} s  {rate:.3e} particle-steps/s"
                   + (f"  frame {sim.frame_index}" if at_frame else ""))
 
-    def finish(self, sim, wall, step0):
-        """Closing lines: where the time went (slowest rank per phase) and the throughput."""
+    def finish(self, sim, wall, step0, ended="done"):
+        """Closing lines: how the run ``ended`` (done, stopped), where the time went (slowest rank
+        per phase) and the throughput."""
         phases = sim.timer.summary(self.comm)
         refresh = self.comm.allreduce(sim.halo.refresh_seconds, op=MPI.MAX)
         phases["exchange"] += refresh
@@ -51,7 +52,7 @@ class Progress:
         steps = sim.step - step0
         rate = self.n_total * steps / wall / self.comm.size if wall > 0 else 0.0
         shares = "  ".join(f"{k} {100 * v / wall:.1f}%" for k, v in phases.items())
-        self._say(f"mpisph: done at t = {sim.t:g} s after {sim.step} steps")
+        self._say(f"mpisph: {ended} at t = {sim.t:g} s after {sim.step} steps")
         self._say(f"timing: wall {wall:.2f} s  {shares}")
         self._say(f"throughput: {rate:.4g} particle-steps/s/core on {self.comm.size} rank(s), "
                   f"{self.n_total} particles, {steps} steps, {sim.advection_steps} neighbour configurations")

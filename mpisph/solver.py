@@ -24,6 +24,8 @@ Per advection step (one neighbour configuration), on every rank:
    11. steps       time steps of the integrator (integrators/) until the advection
                    step is covered; each rank's limits (integrators/time_step.py),
                    the minimum over ranks, clipped to output times
+   12. stop        a SIGTERM or SIGUSR1 received on any rank (parallel/stop.py) ends
+                   the run after this step with a frame to restart from
 
 Every output interval one frame holds the whole global state. The physics is
 in the parts of the run (parts.py): this module knows none of it.
@@ -37,7 +39,7 @@ from mpi4py import MPI
 from . import surface
 from .blowup import PROBLEMS, first_bad_particle
 from .context import StepContext
-from .errors import BlowUp, NoConvergence
+from .errors import BlowUp, NoConvergence, Stopped
 from .io.frames import frame_path, write_frame
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
@@ -53,7 +55,7 @@ class Simulation:
     """One run of a case on the ranks of ``comm``."""
 
     def __init__(self, comm, case, params, particles, parts, *, t=0.0, step=0,
-                 out_dir, diagnostics, progress):
+                 out_dir, diagnostics, progress, stop=None):
         self.comm = comm
         self.case = case
         self.params = params
@@ -64,6 +66,7 @@ class Simulation:
         self.out_dir = out_dir
         self.diagnostics = diagnostics
         self.progress = progress
+        self.stop = stop  # a parallel.stop.StopOnSignal, or None: run to the end
         self.support = parts.kernel.support
         lo, hi = case.domain
         self.decomp = SlabDecomposition(comm, case.slab_axis, lo[case.slab_axis],
@@ -172,8 +175,7 @@ class Simulation:
                     try:
                         self.parts.integrator.step(self.ctx, dt)
                     except NoConvergence as e:
-                        self.frame_index += 1  # after the last regular frame, not over it
-                        self.write_frame()
+                        self._write_unscheduled_frame()
                         raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {e}; last frame written",
                                      step=self.step, time=self.t) from None
                 self.step += 1
@@ -194,7 +196,20 @@ class Simulation:
                     self.frame_index = max(self.frame_index, int(np.ceil(t_end / interval - 1e-9)))
                 self.write_frame()
             self.progress(self, wallclock.perf_counter() - wall0, t0, step0, frame_due)
+            signal_name = self.stop.requested(self.comm) if self.stop is not None else None
+            if signal_name:
+                if not frame_due:
+                    self._write_unscheduled_frame()
+                raise Stopped(signal_name, step=self.step, time=self.t,
+                              frame=frame_path(self.out_dir, self.frame_index))
         return self
+
+    def _write_unscheduled_frame(self):
+        """A frame of the current state between two output times, numbered after the last regular
+        frame (not over it); the regular frame of that number replaces it when a restarted run
+        reaches its time."""
+        self.frame_index += 1
+        self.write_frame()
 
     def write_frame(self):
         pa = self.particles
