@@ -121,6 +121,7 @@ def _prepare_out_dir(comm, path):
 def run(args, comm):
     from . import case as cases
     from .initial import particles_from_case, particles_from_frame
+    from .memory import check_fits, resident_bytes
     from .io.diagnostics import Diagnostics
     from .io.frames import check_frame, read_frame
     from .observables import observable_names
@@ -129,6 +130,7 @@ def run(args, comm):
     from .progress import Progress
     from .solver import Simulation
 
+    baseline = resident_bytes()
     module = cases.load_case_module(args.case)
     overrides = _overrides(args)
     frame = None
@@ -146,13 +148,14 @@ def run(args, comm):
     parts = make_parts(case, values)
     case.validate(parts.kernel.support)
     if frame is None:
+        check_fits(comm, sum(len(b.x) for b in case.bodies) + sum(len(w.x) for w in case.walls))
         particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
     else:
         particles, t, step = particles_from_frame(comm, frame, parts), frame["t"], frame["step"]
     case.forget_particles()
     restarted, frame = frame is not None, None  # the global arrays of the frame are not kept either
     out_dir = args.out or os.path.join("runs", args.case)
-    progress = Progress(comm, quiet=args.quiet)
+    progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)

@@ -5,10 +5,13 @@ dp along each axis), so every particle's volume is exactly dp^d; a box whose
 side is not a multiple of dp holds floor(L/dp) particles along it.
 """
 
+import math
+
 import numpy as np
 
 from .errors import InputError
 from .kernels import SUPPORT_FACTOR
+from .memory import BUILD_BYTES_PER_PARTICLE, available_bytes, too_many
 
 
 def support_layers(h_factor):
@@ -32,8 +35,18 @@ def lattice_mismatch(symbol, length, dp):
             f"choose dp = {symbol} / n for a whole number n")
 
 
+def _within_memory(counts, dp, what):
+    """Refuse, before allocating it, a lattice of prod(``counts``) points that this machine could not
+    even hold while the case is built (memory.too_many says how much a run would need)."""
+    count = math.prod(int(c) for c in counts)
+    available = available_bytes()
+    if available is not None and count * BUILD_BYTES_PER_PARTICLE > available:
+        raise InputError(too_many(count, f"dp = {dp:g} m fills {what} with", available))
+
+
 def _axis_points(lo, hi, dp, what):
     n = lattice_layers(hi - lo, dp)
+    _within_memory([n], dp, what)
     if n < 1:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi - lo:g} m across)")
     return lo + (np.arange(n) + 0.5) * dp
@@ -41,6 +54,7 @@ def _axis_points(lo, hi, dp, what):
 
 def box(lo, hi, dp, what="the box"):
     """Cell-centred lattice filling the box [lo, hi] (2D or 3D)."""
+    _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)], dp, what)
     axes = [_axis_points(a, b, dp, what) for a, b in zip(lo, hi)]
     grids = np.meshgrid(*axes, indexing="ij")
     return np.stack([g.ravel() for g in grids], axis=1)
@@ -52,6 +66,7 @@ def disk(centre, radius, dp, what="the disk"):
     if 2 * radius < dp:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({2 * radius:g} m across)")
     m = int(np.ceil(radius / dp))
+    _within_memory([2 * m + 1] * len(centre), dp, what)
     axis = np.arange(-m, m + 1) * dp
     grids = np.meshgrid(*([axis] * len(centre)), indexing="ij")
     pts = np.stack([g.ravel() for g in grids], axis=1)
@@ -65,6 +80,7 @@ def cylinder(base, radius, height, dp, what="the cylinder"):
     if 2 * radius < dp:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({2 * radius:g} m across)")
     m = int(np.ceil(radius / dp))
+    _within_memory([2 * m, 2 * m, lattice_layers(height, dp)], dp, what)
     ring = (np.arange(-m, m) + 0.5) * dp
     gx, gy = np.meshgrid(ring, ring, indexing="ij")
     inside = gx**2 + gy**2 < radius**2
@@ -77,6 +93,7 @@ def bed(lo, hi, dp, layers):
     """Dummy particles of a flat bed whose surface is the plane {last coordinate = 0} under the
     footprint [lo, hi] of the other axes (x in 2D, x and y in 3D): ``layers`` lattice layers, the
     shallowest first. Returns (positions, upward unit normals, depths below the surface)."""
+    _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)] + [layers], dp, "the bed")
     axes = [_axis_points(a, b, dp, "the bed") for a, b in zip(lo, hi)]
     grids = np.meshgrid(*axes, indexing="ij")
     plane = np.stack([g.ravel() for g in grids], axis=1)
@@ -105,6 +122,7 @@ def box_walls(lo, hi, dp, layers, open_sides=()):
             ext_hi[a] = hi[a]
         else:
             ext_lo[a] = lo[a]
+    _within_memory(np.ceil((ext_hi - ext_lo) / dp), dp, "the walls")
     axes = [lo[a] + (np.arange(int(round((ext_lo[a] - lo[a]) / dp)),
                                int(round((ext_hi[a] - lo[a]) / dp))) + 0.5) * dp
             for a in range(dim)]

@@ -6,19 +6,23 @@ import time as wallclock
 import numpy as np
 from mpi4py import MPI
 
+from .memory import per_rank_line, resident_bytes
 from .particles import MOVING
 
 PRINT_EVERY = 2.0  # seconds of wall time between lines that are not at a frame
 
 
 class Progress:
-    def __init__(self, comm, quiet):
+    def __init__(self, comm, quiet, baseline_bytes):
         self.comm = comm
         self.quiet = quiet
+        self.baseline = baseline_bytes  # resident before the case was built (memory.per_rank_line)
+        self.start_bytes = 0
         self.n_total = 0
         self._last = -np.inf
 
     def start(self, sim):
+        self.start_bytes = resident_bytes()
         pa = sim.particles
         self.n_total = self.comm.allreduce(int(np.count_nonzero(pa.owned("kind") == MOVING)))
         self._say(f"mpisph: case {sim.params['case']}, {self.n_total} moving particles, "
@@ -44,7 +48,7 @@ class Progress:
 
     def finish(self, sim, wall, step0, ended="done"):
         """Closing lines: how the run ``ended`` (done, stopped), where the time went (slowest rank
-        per phase) and the throughput."""
+        per phase), the throughput and the memory."""
         phases = sim.timer.summary(self.comm)
         refresh = self.comm.allreduce(sim.halo.refresh_seconds, op=MPI.MAX)
         phases["exchange"] += refresh
@@ -56,6 +60,7 @@ class Progress:
         self._say(f"timing: wall {wall:.2f} s  {shares}")
         self._say(f"throughput: {rate:.4g} particle-steps/s/core on {self.comm.size} rank(s), "
                   f"{self.n_total} particles, {steps} steps, {sim.advection_steps} neighbour configurations")
+        self._say(per_rank_line(self.comm, self.baseline, self.start_bytes, sim.particles.n_owned))
 
     def _say(self, line):
         if self.comm.rank == 0 and not self.quiet:

@@ -44,6 +44,9 @@ def existing_output(tmp_path):
     (["elliptical_drop", "--set", "dp=3"], ["larger than the drop"]),
     (["dam_break_2d", "--set", "dp=5"], ["larger than the water column"]),
     (["elliptical_drop", "--set", "dp"], ["NAME=VALUE"]),
+    (["dam_break_2d", "--set", "dp=1e-12"], ["fills the water column with 2e+24 particles", "GB to run",
+                                             "GB available"]),
+    (["cube_failure_3d", "--set", "dp=1e-12"], ["fills the soil cube with 8e+36 particles", "GB available"]),
 ])
 def test_bad_parameters(args, fragments, existing_output):
     out, marker = existing_output
@@ -161,3 +164,16 @@ def test_unknown_kernel(existing_output):
     out, _ = existing_output
     result = mpisph(["elliptical_drop", "--set", "kernel=gaussian", "--out", out, "--quiet"], timeout=120)
     assert_clean_error(result, "kernel must be one of")
+
+
+def test_a_case_too_large_for_the_node_is_refused_with_its_count(existing_output, monkeypatch):
+    """A case whose lattices fit but whose run would not (memory.check_fits, 2 ranks on this node)."""
+    from mpisph import memory
+    available = memory.available_bytes()
+    # dp for a dam break (a 1 m x 2 m water column, then walls) of 1.5 times what 2 ranks could run here
+    count = 1.5 * available / (2 * (memory.BUILD_BYTES_PER_PARTICLE + memory.RUN_BYTES_PER_PARTICLE / 2))
+    dp = (2.0 / count) ** 0.5
+    out, marker = existing_output
+    result = mpisph(["dam_break_2d", "--set", f"dp={dp:.4g}", "--out", out, "--quiet"], ranks=2, timeout=300)
+    assert_clean_error(result, "the case has", "on this node's 2 ranks", "GB available")
+    assert marker.read_bytes() == b"earlier result"

@@ -65,6 +65,8 @@ def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
     m = re.fullmatch(rf"mpisph: stopped by {name} at step (\d+), t = (\S+) s; frame (\S+) written; continue with: "
                      rf"mpirun -n \d python -m mpisph dam_break_2d --restart (\S+) --out (\S+)", line)
     assert m, line
+    assert re.search(r"^memory: largest rank [\d.e+-]+ GB at start-up, [\d.e+-]+ GB at the peak; above the "
+                     r"interpreter and libraries \d+ and \d+ bytes per owned particle$", stdout, re.M), stdout
     frame = m.group(3)
     assert m.group(4) == frame and list_frames(out)[-1] == frame
     check_frame(frame)
