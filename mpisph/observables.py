@@ -5,7 +5,11 @@ momentum, angular momentum and potential energy in gravity; the scheme adds
 its own sums (the strain energy of elastic solids), every probe of the case
 (a particle given by its global id) its displacement from the initial
 position, and a case with a ``Front`` the largest distance of a moving
-particle from its origin (a maximum, exact on any number of ranks).
+particle from its origin (a maximum, exact on any number of ranks). The last
+columns describe the load balance: the fewest and most moving particles and
+neighbour pairs on a rank in the current configuration, the imbalance of the
+pairs (max / mean - 1, what the rebalance threshold is compared with) and the
+rebalances since the start.
 """
 
 import numpy as np
@@ -74,7 +78,22 @@ def observable_names(dim, scheme=None, probes=(), front=None):
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     if front is not None:
         names.append("front")
-    return names
+    return names + LOAD_COLUMNS
+
+
+LOAD_COLUMNS = ["rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max", "imbalance",
+                "rebalances"]
+
+
+def _load_balance(sim):
+    """The values of LOAD_COLUMNS (module docstring)."""
+    pa, start = sim.particles, sim.ctx.start
+    local = np.array([np.count_nonzero(pa.owned("kind") == MOVING), start[pa.n_owned] - start[0]], dtype=float)
+    every = np.empty((sim.comm.size, 2))
+    sim.comm.Allgather(local, every)
+    particles, pairs = every[:, 0], every[:, 1]
+    imbalance = pairs.max() / pairs.mean() - 1.0 if pairs.mean() > 0 else 0.0
+    return [particles.min(), particles.max(), pairs.min(), pairs.max(), imbalance, sim.rebalances]
 
 
 def _probe_positions(pa, n, gids, dim):
@@ -107,6 +126,8 @@ def global_observables(sim):
     if front is not None:
         far = front_distance(n, pa.kind, pa.x, np.asarray(front.origin, float), np.asarray(front.axes, np.int64))
         values.append(sim.comm.allreduce(far, op=MPI.MAX))
+    values += _load_balance(sim)
     out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front), values))
-    out["n"] = int(out["n"])
+    for name in ("n", "rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max"):
+        out[name] = int(out[name])
     return out

@@ -74,6 +74,7 @@ class Simulation:
         self.halo = Halo(self.decomp, self.support, lo, hi, case.periodic)
         self.frame_index = int(np.floor(t / params["output_interval"] + 1e-9))
         self.advection_steps = 0
+        self.rebalances = 0  # new cuts after the first ones (diagnostics.csv)
         self.dt = 0.0
         self.timer = PhaseTimer()
         self.workspace = Workspace()
@@ -101,6 +102,7 @@ class Simulation:
             first = self.advection_steps == 0  # cut once on counts, once on the pairs of the first lists
             if first or self.decomp.imbalance(work.sum()) > self.params["rebalance_threshold"]:
                 self.decomp.balance(pa.owned("x")[:, self.decomp.axis], work)
+                self.rebalances += not first
             migrate(pa, self.decomp)
             if self.advection_steps % CELL_SORT_EVERY == 0:
                 pa.keep_owned(cell_order(pa.x, pa.n_owned, self.support, self.case.domain[0]), 0)

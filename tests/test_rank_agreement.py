@@ -4,6 +4,7 @@ any rank count continues the run as if it had never stopped."""
 import numpy as np
 import pytest
 
+from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpirun import mpisph
 
@@ -80,3 +81,25 @@ def test_restart_continues_the_run(runs, case, ranks, tmp_path):
     r = mpisph([case, "--restart", halfway, "--out", tmp_path, "--quiet"], ranks=ranks, timeout=600)
     assert r.returncode == 0, r.stderr
     assert_same_particles(final_state(uninterrupted), final_state(tmp_path), size)
+
+
+@pytest.mark.parametrize("case", ["dam_break_2d", "dam_break_3d", "inclined_plane"])
+def test_load_balance_columns(runs, case):
+    """diagnostics.csv's load-balance columns: one rank holds everything; on three, the fewest and
+    most particles and pairs per rank bracket the mean, and the imbalance is max / mean - 1 of the
+    pairs, which the rebalancing keeps near or under its threshold (0.1)."""
+    one = read_diagnostics(runs[case][1] / "diagnostics.csv")
+    n, pairs = one["n"], one["rank_pairs_max"]
+    np.testing.assert_array_equal(one["rank_particles_min"], n)
+    np.testing.assert_array_equal(one["rank_particles_max"], n)
+    np.testing.assert_array_equal(one["rank_pairs_min"], pairs)
+    np.testing.assert_array_equal(one["imbalance"], 0.0)
+    np.testing.assert_array_equal(one["rebalances"], 0.0)
+    three = read_diagnostics(runs[case][3] / "diagnostics.csv")
+    assert np.all(three["rank_particles_min"] <= n / 3) and np.all(three["rank_particles_max"] >= n / 3)
+    # the same configurations, so the same total of pairs: the mean per rank is a third of it
+    mean = pairs / 3
+    assert np.all(three["rank_pairs_min"] <= mean) and np.all(three["rank_pairs_max"] >= mean)
+    np.testing.assert_allclose(three["imbalance"], three["rank_pairs_max"] / mean - 1.0, rtol=1e-12)
+    assert np.median(three["imbalance"]) < 0.15
+    assert np.all(np.diff(three["rebalances"]) >= 0)
