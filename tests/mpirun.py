@@ -1,4 +1,10 @@
-"""Run ``python -m mpisph`` under mpirun from a test, with a hard time limit."""
+"""Run ``python -m mpisph`` under mpirun from a test, with a hard time limit; signal a running one."""
+
+import os
+import subprocess
+import time
+
+import pytest
 
 from mpisph.launch import mpirun_mpisph
 
@@ -6,3 +12,22 @@ from mpisph.launch import mpirun_mpisph
 def mpisph(args, ranks=1, timeout=600):
     """A run that does not finish within ``timeout`` seconds (a deadlock) fails the test."""
     return mpirun_mpisph(args, ranks=ranks, timeout=timeout)
+
+
+def signal_when_running(proc, out, signum, timeout=300):
+    """Once the run started as ``proc`` (a Popen with captured text output) has written a few rows of
+    ``out``/diagnostics.csv, send it ``signum``; return its (exit status, stdout, stderr). A run that
+    does not end within ``timeout`` seconds after the signal fails the test."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and proc.poll() is None:
+        path = out / "diagnostics.csv"
+        if path.exists() and len(path.read_text().splitlines()) > 3:
+            os.kill(proc.pid, signum)
+            break
+        time.sleep(0.2)
+    try:
+        stdout, stderr = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the run did not end after the signal")
+    return proc.returncode, stdout, stderr

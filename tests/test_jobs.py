@@ -6,12 +6,12 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
 from mpisph.io.frames import list_frames
 from mpisph.launch import MPI_ENV, ROOT
+from mpirun import signal_when_running
 
 STOPPED = ("mpisph: stopped by SIGUSR1 at step 512, t = 1.25 s; frame runs/x/frame_00003.vtkhdf written; "
            "continue with: mpirun -n 64 python -m mpisph flume_3d --restart runs/x/frame_00003.vtkhdf --out runs/x")
@@ -97,19 +97,8 @@ def test_chain_stops_the_run_on_a_signal_and_submits_the_next_job(tmp_path):
     proc = subprocess.Popen(["bash", "-c", DRIVER, "driver", "dam_break_2d", "--set", "dp=0.05", "--t-end", "50",
                              "--output-interval", "10"], cwd=ROOT, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and proc.poll() is None:
-        diagnostics = out / "diagnostics.csv"
-        if diagnostics.exists() and len(diagnostics.read_text().splitlines()) > 3:
-            os.kill(proc.pid, signal.SIGUSR1)
-            break
-        time.sleep(0.2)
-    try:
-        stdout, stderr = proc.communicate(timeout=300)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        pytest.fail("the job did not end after the signal")
-    assert proc.returncode == 0, stdout + stderr
+    code, stdout, stderr = signal_when_running(proc, out, signal.SIGUSR1)
+    assert code == 0, stdout + stderr
     frame = list_frames(out)[-1]
     assert (out / "submitted").read_text().split() == ["dam_break_2d", "--restart", frame]
     assert "signal received: asking the run to stop" in stdout

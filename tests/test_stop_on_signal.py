@@ -7,14 +7,13 @@ import re
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import check_frame, list_frames, read_frame
 from mpisph.launch import MPI_ENV, ROOT
-from mpirun import mpisph
+from mpirun import mpisph, signal_when_running
 
 RUN = ["dam_break_2d", "--set", "dp=0.05", "--t-end", "50", "--output-interval", "10"]
 
@@ -26,39 +25,16 @@ def _start(cmd, out):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
-def _stop_when_running(proc, out, signum, pids):
-    """Wait for the first diagnostics rows after the initial frame, then send ``signum`` to ``pids()``."""
-    deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and proc.poll() is None:
-        path = out / "diagnostics.csv"
-        if path.exists() and len(path.read_text().splitlines()) > 3:
-            for pid in pids():
-                os.kill(pid, signum)
-            break
-        time.sleep(0.2)
-    try:
-        stdout, stderr = proc.communicate(timeout=300)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        pytest.fail("the run did not stop after the signal")
-    return proc.returncode, stdout, stderr
-
-
-def _ranks_of(mpirun_pid):
-    r = subprocess.run(["pgrep", "-P", str(mpirun_pid)], capture_output=True, text=True)
-    return [int(p) for p in r.stdout.split()]
-
-
 @pytest.mark.parametrize("how", ["SIGUSR1 to mpirun, 2 ranks", "SIGTERM to the rank"])
 def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
     out = tmp_path / "run"
     if how.startswith("SIGUSR1"):
         proc = _start(["mpirun", "-n", "2", sys.executable], out)
-        code, stdout, stderr = _stop_when_running(proc, out, signal.SIGUSR1, lambda: [proc.pid])
+        code, stdout, stderr = signal_when_running(proc, out, signal.SIGUSR1)
         name = "SIGUSR1"
     else:  # one rank started without mpirun, signalled directly
         proc = _start([sys.executable], out)
-        code, stdout, stderr = _stop_when_running(proc, out, signal.SIGTERM, lambda: [proc.pid])
+        code, stdout, stderr = signal_when_running(proc, out, signal.SIGTERM)
         name = "SIGTERM"
     assert code == 0, stderr
     line = stdout.strip().splitlines()[-1]
