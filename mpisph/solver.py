@@ -41,6 +41,7 @@ from .blowup import PROBLEMS, first_bad_particle
 from .context import StepContext
 from .errors import BlowUp, NoConvergence, Stopped
 from .io.frames import frame_path, write_frame
+from .io.series import add_to_series
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
 from .parallel.decomposition import SlabDecomposition, migrate, particle_work
@@ -218,5 +219,7 @@ class Simulation:
         fields = pa.owned_fields()
         fields.update(self.parts.scheme.derived_fields(pa, pa.n_owned))
         with self.timer("io"):
-            write_frame(frame_path(self.out_dir, self.frame_index), self.comm, fields,
-                        time=self.t, step=self.step, dim=self.case.dim, params=self.params)
+            path = frame_path(self.out_dir, self.frame_index)
+            write_frame(path, self.comm, fields, time=self.t, step=self.step, dim=self.case.dim, params=self.params)
+            if self.comm.rank == 0:
+                add_to_series(self.out_dir, path, self.t)
