@@ -120,6 +120,7 @@ def _prepare_out_dir(comm, path):
 
 def run(args, comm):
     from . import case as cases
+    from .gauges import GaugeRecorder
     from .initial import particles_from_case, particles_from_frame
     from .memory import check_fits, resident_bytes
     from .io.diagnostics import Diagnostics
@@ -162,6 +163,9 @@ def run(args, comm):
     _prepare_out_dir(comm, out_dir)
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front),
                                   append=restarted, restart_time=t if restarted else None)
+    if case.gauges:
+        sim.gauges = GaugeRecorder(case, particles, out_dir, comm, append=restarted,
+                                   restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step
     stopped = None
@@ -172,6 +176,8 @@ def run(args, comm):
     finally:
         stop.close()
         sim.diagnostics.close()
+        if sim.gauges is not None:
+            sim.gauges.close()
     progress.finish(sim, time.perf_counter() - wall0, step0, ended="stopped" if stopped else "done")
     if stopped and comm.rank == 0:
         print(f"mpisph: {stopped}; frame {stopped.frame} written; continue with: mpirun -n {comm.size} python -m "

@@ -144,6 +144,7 @@ class Case:
     warnings: list = field(default_factory=list)  # one-line warnings printed when a run starts
     probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
     front: Front | None = None  # recorded in diagnostics.csv when given
+    gauges: list = field(default_factory=list)  # gauges.Gauge and gauges.SurfaceGauge, a CSV file each
 
     def __post_init__(self):
         if isinstance(self.stabilisers, str):

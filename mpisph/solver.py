@@ -68,6 +68,7 @@ class Simulation:
         self.diagnostics = diagnostics
         self.progress = progress
         self.stop = stop  # a parallel.stop.StopOnSignal, or None: run to the end
+        self.gauges = None  # a gauges.GaugeRecorder, or None: the case has no gauges
         self.support = parts.kernel.support
         lo, hi = case.domain
         self.decomp = SlabDecomposition(comm, case.slab_axis, lo[case.slab_axis],
@@ -163,7 +164,7 @@ class Simulation:
         if self.step == 0:
             self._configure_geometry()  # the surface classes of the first frame
             self.write_frame()
-            self.diagnostics.record(global_observables(self))
+            self._record()
         while self.t < t_end:
             self._configure()
             dt, dt_advection = self._time_steps()
@@ -192,7 +193,7 @@ class Simulation:
             self.advection_steps += 1
             frame_due = self.t >= t_next_frame
             if frame_due or self.advection_steps % self.params["diagnostics_every"] == 0:
-                self.diagnostics.record(global_observables(self))
+                self._record()
             if frame_due:
                 self.frame_index = int(np.floor(self.t / interval + 1e-9))
                 if self.t >= t_end:
@@ -206,6 +207,12 @@ class Simulation:
                 raise Stopped(signal_name, step=self.step, time=self.t,
                               frame=frame_path(self.out_dir, self.frame_index))
         return self
+
+    def _record(self):
+        """A row of diagnostics.csv and of every gauge's file."""
+        self.diagnostics.record(global_observables(self))
+        if self.gauges is not None:
+            self.gauges.record(self)
 
     def _write_unscheduled_frame(self):
         """A frame of the current state between two output times, numbered after the last regular

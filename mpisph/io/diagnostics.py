@@ -1,4 +1,5 @@
-"""Per-step global diagnostics in ``<out_dir>/diagnostics.csv``.
+"""Per-step global diagnostics in ``<out_dir>/diagnostics.csv`` (and the gauges' CSV files,
+gauges.py, written the same way).
 
 Only rank 0 touches the file; the values passed to :meth:`Diagnostics.record`
 are already global.  Floats are written with 17 significant digits, so they
@@ -23,7 +24,7 @@ def _format(value):
 
 
 class Diagnostics:
-    """CSV writer for one run, open on rank 0 only.
+    """CSV writer for one run, open on rank 0 only (``filename`` in ``out_dir``).
 
     ``columns`` are the column names.  A new file (header only) is created
     unless ``append`` is true; then the existing file is continued after
@@ -33,8 +34,8 @@ class Diagnostics:
     """
 
     def __init__(self, out_dir, comm, columns, append=False, *,
-                 restart_time=None):
-        self.path = os.path.join(out_dir, FILENAME)
+                 restart_time=None, filename=FILENAME):
+        self.path = os.path.join(out_dir, filename)
         self.columns = list(columns)
         self._file = None
         err = None

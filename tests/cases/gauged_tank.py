@@ -1,0 +1,24 @@
+"""The hydrostatic tank with gauges (tests/test_gauges.py): a vertical line of points through the
+water and above it, and the water's top over stations across the tank."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+from mpisph.gauges import Gauge, SurfaceGauge
+
+_spec = importlib.util.spec_from_file_location("hydrostatic_tank", Path(__file__).parents[2] / "cases" /
+                                               "hydrostatic_tank.py")
+_tank = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_tank)
+
+PARAMS = _tank.PARAMS
+
+
+def setup(p):
+    case = _tank.setup(p)
+    case.gauges = [Gauge.line("column", (0.5 * p.width, 0.1 * p.depth), (0.5 * p.width, 1.5 * p.depth), 15,
+                              fields=("p", "v")),
+                   SurfaceGauge("surface", np.array([[0.25 * p.width], [0.5 * p.width], [0.75 * p.width]]))]
+    return case

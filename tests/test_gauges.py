@@ -1,0 +1,64 @@
+"""Gauges (mpisph/gauges.py) on still water: the samples along a vertical line are the Shepard
+interpolation of the last frame's particles, the pressure is near hydrostatic, the kernel sum is 1
+in the water and 0 above it (where the fields are nan), the water's top is its depth; 1 and 2 ranks
+give the same samples (to round-off: sums over ranks) and the same tops (a maximum: exactly)."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.kernels import Kernel
+from mpirun import mpisph
+
+CASE = str(Path(__file__).parent / "cases" / "gauged_tank.py")
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    out = {}
+    for ranks in (1, 2):
+        d = tmp_path_factory.mktemp(f"gauged_{ranks}")
+        r = mpisph([CASE, "--set", "dp=0.025", "--t-end", "0.3", "--output-interval", "0.3", "--out", d, "--quiet"],
+                   ranks=ranks, timeout=600)
+        assert r.returncode == 0, r.stderr
+        out[ranks] = (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
+                      read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1]))
+    return out
+
+
+def test_gauges_sample_still_water(runs):
+    column, surface, diag, frame = runs[1]
+    np.testing.assert_array_equal(column["t"], diag["t"])  # one row per row of diagnostics.csv
+    assert column["t"][-1] == frame["t"]
+    depth, rho0, g = 0.5, 1000.0, 9.81
+    points = np.column_stack([np.full(15, 0.5), np.linspace(0.05, 0.75, 15)])
+    kernel = Kernel("wendland_c2", frame["params"]["h_factor"] * 0.025, 2)
+    r = np.linalg.norm(points[:, None, :] - frame["x"][None, :, :], axis=2)
+    wv = kernel.value(r) * frame["mass"] / frame["rho"]
+    last = {k: v[-1] for k, v in column.items()}
+    for i, z in enumerate(points[:, 1]):
+        s = last[f"p{i}_kernel_sum"]
+        assert s == pytest.approx(wv[i].sum(), rel=1e-12, abs=1e-15)
+        if s > 0:
+            assert last[f"p{i}_p"] == pytest.approx(wv[i] @ frame["p"] / s, rel=1e-12)
+            assert last[f"p{i}_vx"] == pytest.approx(wv[i] @ frame["v"][:, 0] / s, rel=1e-9, abs=1e-12)
+        if z < depth - 0.1:  # a kernel support below the surface
+            assert s == pytest.approx(1.0, abs=0.03)
+            assert last[f"p{i}_p"] == pytest.approx(rho0 * g * (depth - z), rel=0.1)
+        elif z > depth + 0.1:
+            assert s == 0.0 and math.isnan(last[f"p{i}_p"])
+    for k in range(3):
+        assert surface[f"s{k}_top"][-1] == pytest.approx(depth, abs=0.025)
+
+
+def test_gauges_on_two_ranks(runs):
+    (c1, s1, _, _), (c2, s2, _, _) = runs[1], runs[2]
+    assert list(c1) == list(c2)
+    for name in c1:
+        np.testing.assert_allclose(c2[name], c1[name], rtol=1e-9, atol=1e-9 * 5000.0, equal_nan=True, err_msg=name)
+    for name in s1:
+        np.testing.assert_array_equal(s2[name], s1[name])
