@@ -121,6 +121,7 @@ def _prepare_out_dir(comm, path):
 def run(args, comm):
     from . import case as cases
     from .gauges import GaugeRecorder
+    from .wall_forces import wall_force_columns
     from .initial import particles_from_case, particles_from_frame
     from .memory import check_fits, resident_bytes
     from .io.diagnostics import Diagnostics
@@ -161,7 +162,8 @@ def run(args, comm):
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
     _prepare_out_dir(comm, out_dir)
-    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front),
+    sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
+                                                                  wall_force_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)
     if case.gauges:
         sim.gauges = GaugeRecorder(case, particles, out_dir, comm, append=restarted,

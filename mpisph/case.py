@@ -145,6 +145,7 @@ class Case:
     probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
     front: Front | None = None  # recorded in diagnostics.csv when given
     gauges: list = field(default_factory=list)  # gauges.Gauge and gauges.SurfaceGauge, a CSV file each
+    wall_forces: dict = field(default_factory=dict)  # wall name -> point of its moment; diagnostics (wall_forces.py)
 
     def __post_init__(self):
         if isinstance(self.stabilisers, str):
@@ -154,6 +155,23 @@ class Case:
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
         self.probe_origins = {name: self._initial_position(gid) for name, gid in self.probes.items()}
+        self.wall_gids = {}  # set by validate, from the walls
+
+    def _wall_gids(self):
+        """{wall name: (first, last + 1) global id} of the walls whose forces are recorded (global ids
+        run over the bodies, then the walls, in order)."""
+        names = [w.name for w in self.walls]
+        unknown = [name for name in self.wall_forces if name not in names]
+        if unknown:
+            raise InputError(f"wall_forces names {', '.join(map(repr, unknown))}: the walls are "
+                             f"{', '.join(map(repr, names)) or 'none'}")
+        first = sum(len(b.x) for b in self.bodies)
+        out = {}
+        for w in self.walls:
+            if w.name in self.wall_forces:
+                out[w.name] = (first, first + len(w.x))
+            first += len(w.x)
+        return out
 
     def _initial_position(self, gid):
         """Initial position of the moving or clamped particle with global id ``gid``."""
@@ -170,7 +188,9 @@ class Case:
         self.bodies, self.walls = [], []
 
     def validate(self, support):
-        """Raise InputError for a case that cannot run."""
+        """Raise InputError for a case that cannot run; note the global ids of the walls whose forces
+        are recorded (``wall_gids``)."""
+        self.wall_gids = self._wall_gids()
         if not self.dp > 0:
             raise InputError(f"spacing dp must be positive, not {self.dp!r}")
         lo, hi = self.domain

@@ -35,12 +35,18 @@ class ForceTerm:
     name = ""
     frozen = False  # fixed over a neighbour configuration: evaluated once per configuration
     uniform = False  # the same acceleration for every particle
+    pairwise = True  # a sum over neighbour pairs (the wall forces take these, wall_forces.py)
     fields = ()  # per-particle fields the term needs besides the scheme's
     ghost_fields = ()  # fields the term reads from neighbours, refreshed before the momentum sum
 
     def add(self, ctx, acc):
         """Add this term's acceleration of the owned moving particles to ``acc``."""
         raise NotImplementedError
+
+    def add_all(self, ctx, acc):
+        """``add`` with every part of the term, including one that an implicit step takes instead
+        (what the wall forces sum, wall_forces.py)."""
+        self.add(ctx, acc)
 
 
 @njit(cache=True)
@@ -58,6 +64,7 @@ class UniformAcceleration(ForceTerm):
 
     frozen = True
     uniform = True
+    pairwise = False
 
     def __init__(self, acceleration):
         self.acceleration = np.asarray(acceleration, dtype=float)

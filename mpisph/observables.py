@@ -4,8 +4,10 @@ Every run records time, step, dt, particle count, mass, kinetic energy,
 momentum, angular momentum and potential energy in gravity; the scheme adds
 its own sums (the strain energy of elastic solids), every probe of the case
 (a particle given by its global id) its displacement from the initial
-position, and a case with a ``Front`` the largest distance of a moving
-particle from its origin (a maximum, exact on any number of ranks). The last
+position, a case with a ``Front`` the largest distance of a moving
+particle from its origin (a maximum, exact on any number of ranks), and a case
+with ``wall_forces`` the force and moment on each of those walls
+(wall_forces.py). The last
 columns describe the load balance: the fewest and most moving particles and
 neighbour pairs on a rank in the current configuration, the imbalance of the
 pairs (max / mean - 1, what the rebalance threshold is compared with) and the
@@ -17,6 +19,7 @@ from mpi4py import MPI
 from numba import njit
 
 from .particles import MOVING
+from .wall_forces import wall_force_columns, wall_force_values
 
 BLOCK = 1024  # particles per partial sum: blocked summation keeps the round-off near that of numpy's
 
@@ -68,8 +71,8 @@ def front_distance(n, kind, x, origin, axes):
     return np.sqrt(far)
 
 
-def observable_names(dim, scheme=None, probes=(), front=None):
-    """Columns of diagnostics.csv."""
+def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=()):
+    """Columns of diagnostics.csv (``wall_forces``: wall_forces.wall_force_columns)."""
     ang = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
     names += ["potential_energy"]
@@ -78,7 +81,7 @@ def observable_names(dim, scheme=None, probes=(), front=None):
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     if front is not None:
         names.append("front")
-    return names + LOAD_COLUMNS
+    return names + list(wall_forces) + LOAD_COLUMNS
 
 
 LOAD_COLUMNS = ["rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max", "imbalance",
@@ -126,8 +129,9 @@ def global_observables(sim):
     if front is not None:
         far = front_distance(n, pa.kind, pa.x, np.asarray(front.origin, float), np.asarray(front.axes, np.int64))
         values.append(sim.comm.allreduce(far, op=MPI.MAX))
+    values += wall_force_values(sim) if sim.case.wall_forces else []
     values += _load_balance(sim)
-    out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front), values))
+    out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front, wall_force_columns(sim.case)), values))
     for name in ("n", "rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max"):
         out[name] = int(out[name])
     return out

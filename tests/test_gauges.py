@@ -1,7 +1,9 @@
 """Gauges (mpisph/gauges.py) on still water: the samples along a vertical line are the Shepard
 interpolation of the last frame's particles, the pressure is near hydrostatic, the kernel sum is 1
 in the water and 0 above it (where the fields are nan), the water's top is its depth; 1 and 2 ranks
-give the same samples (to round-off: sums over ranks) and the same tops (a maximum: exactly)."""
+give the same samples (to round-off: sums over ranks) and the same tops (a maximum: exactly). The
+water's force on its tank (wall_forces.py) is its weight, and its moment about the tank's corner
+that of the weight at mid-width (the side walls' moments cancel)."""
 
 import math
 from pathlib import Path
@@ -62,3 +64,13 @@ def test_gauges_on_two_ranks(runs):
         np.testing.assert_allclose(c2[name], c1[name], rtol=1e-9, atol=1e-9 * 5000.0, equal_nan=True, err_msg=name)
     for name in s1:
         np.testing.assert_array_equal(s2[name], s1[name])
+
+
+def test_force_of_still_water_on_its_tank(runs):
+    (_, _, one, _), (_, _, two, _) = runs[1], runs[2]
+    weight = one["mass"][-1] * 9.81
+    assert np.all(np.abs(one["force_tank_x"]) < 1e-9 * weight)
+    assert one["force_tank_y"][1:].mean() == pytest.approx(-weight, rel=0.01)  # the water oscillates by a few %
+    np.testing.assert_allclose(one["moment_tank_z"], 0.5 * one["force_tank_y"], rtol=0.002)  # width 1 m
+    for name in ("force_tank_y", "moment_tank_z"):
+        np.testing.assert_allclose(two[name], one[name], rtol=1e-9, err_msg=name)

@@ -239,10 +239,17 @@ class GranularMomentum(ForceTerm):
         self.scheme = scheme
 
     def add(self, ctx, acc):
+        self._add(ctx, acc, 0.0 if self.scheme.implicit else self.scheme.viscous_factor)
+
+    def add_all(self, ctx, acc):
+        self._add(ctx, acc, self.scheme.viscous_factor)
+
+    def _add(self, ctx, acc, viscous_factor):
+        """The pair sum, with the viscous term's factor (0: left to the implicit kick)."""
         pa, s = ctx.particles, self.scheme
         momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, s.force_tensors(pa),
-                 pa.mass, pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
-                 0.0 if s.implicit else s.viscous_factor, s.mean, ctx.kernel.params, acc)
+                 pa.mass, pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, viscous_factor,
+                 s.mean, ctx.kernel.params, acc)
 
 
 VISCOUS_FORMS = ("cleary", "corrected_stress")

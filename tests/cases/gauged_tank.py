@@ -1,5 +1,6 @@
-"""The hydrostatic tank with gauges (tests/test_gauges.py): a vertical line of points through the
-water and above it, and the water's top over stations across the tank."""
+"""The hydrostatic tank with gauges and the force on its walls (tests/test_gauges.py): a vertical
+line of points through the water and above it, the water's top over stations across the tank, and
+the force and moment of the water on the tank."""
 
 import importlib.util
 from pathlib import Path
@@ -21,4 +22,5 @@ def setup(p):
     case.gauges = [Gauge.line("column", (0.5 * p.width, 0.1 * p.depth), (0.5 * p.width, 1.5 * p.depth), 15,
                               fields=("p", "v")),
                    SurfaceGauge("surface", np.array([[0.25 * p.width], [0.5 * p.width], [0.75 * p.width]]))]
+    case.wall_forces = {"tank": (0.0, 0.0)}  # the moment about the tank's bottom-left corner
     return case
