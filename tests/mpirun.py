@@ -14,6 +14,17 @@ def mpisph(args, ranks=1, timeout=600):
     return mpirun_mpisph(args, ranks=ranks, timeout=timeout)
 
 
+def runs_on(tmp_path_factory, name, case, args, ranks=(1, 2), timeout=600):
+    """``case`` with ``args`` on each rank count of ``ranks``: {ranks: output directory}."""
+    out = {}
+    for n in ranks:
+        d = tmp_path_factory.mktemp(f"{name}_{n}")
+        r = mpisph([case, *args, "--out", d, "--quiet"], ranks=n, timeout=timeout)
+        assert r.returncode == 0, r.stderr
+        out[n] = d
+    return out
+
+
 def signal_when_running(proc, out, signum, timeout=300):
     """Once the run started as ``proc`` (a Popen with captured text output) has written a few rows of
     ``out``/diagnostics.csv, send it ``signum``; return its (exit status, stdout, stderr). A run that

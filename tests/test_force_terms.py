@@ -9,20 +9,14 @@ import pytest
 from mpisph.forces import Forces, ForceTerm, Gravity
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
-from mpirun import mpisph
+from mpirun import runs_on
 
 CASE = str(Path(__file__).parent / "cases" / "pushed_square.py")
 
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    out = {}
-    for ranks in (1, 2):
-        d = tmp_path_factory.mktemp(f"pushed_{ranks}")
-        r = mpisph([CASE, "--out", d, "--quiet"], ranks=ranks, timeout=600)
-        assert r.returncode == 0, r.stderr
-        out[ranks] = d
-    return out
+    return runs_on(tmp_path_factory, "pushed", CASE, [])
 
 
 @pytest.mark.parametrize("ranks", [1, 2])

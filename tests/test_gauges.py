@@ -14,22 +14,18 @@ import pytest
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
-from mpirun import mpisph
+from mpirun import runs_on
 
 CASE = str(Path(__file__).parent / "cases" / "gauged_tank.py")
 
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    out = {}
-    for ranks in (1, 2):
-        d = tmp_path_factory.mktemp(f"gauged_{ranks}")
-        r = mpisph([CASE, "--set", "dp=0.025", "--t-end", "0.3", "--output-interval", "0.3", "--out", d, "--quiet"],
-                   ranks=ranks, timeout=600)
-        assert r.returncode == 0, r.stderr
-        out[ranks] = (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
-                      read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1]))
-    return out
+    """{ranks: (gauge_column.csv, gauge_surface.csv, diagnostics.csv, last frame)} on 1 and 2 ranks."""
+    dirs = runs_on(tmp_path_factory, "gauged", CASE, ["--set", "dp=0.025", "--t-end", "0.3", "--output-interval",
+                                                      "0.3"])
+    return {n: (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
+                read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1])) for n, d in dirs.items()}
 
 
 def test_gauges_sample_still_water(runs):

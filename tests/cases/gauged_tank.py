@@ -2,17 +2,12 @@
 line of points through the water and above it, the water's top over stations across the tank, and
 the force and moment of the water on the tank."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 
+from mpisph.case import load_case_module
 from mpisph.gauges import Gauge, SurfaceGauge
 
-_spec = importlib.util.spec_from_file_location("hydrostatic_tank", Path(__file__).parents[2] / "cases" /
-                                               "hydrostatic_tank.py")
-_tank = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_tank)
+_tank = load_case_module("hydrostatic_tank")
 
 PARAMS = _tank.PARAMS
 

@@ -1,12 +1,8 @@
 """The inclined plane with the force of the layer on its bed recorded (tests/test_wall_forces.py)."""
 
-import importlib.util
-from pathlib import Path
+from mpisph.case import load_case_module
 
-_spec = importlib.util.spec_from_file_location("inclined_plane", Path(__file__).parents[2] / "cases" /
-                                               "inclined_plane.py")
-_incline = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_incline)
+_incline = load_case_module("inclined_plane")
 
 PARAMS = _incline.PARAMS
 
