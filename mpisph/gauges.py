@@ -11,6 +11,8 @@ it, 1/2 near a free surface, so a line of points also shows where the material i
 over each rank's owned particles and are added over ranks, so a point is sampled whole wherever
 the slabs cut (their last bits depend on the partition, as any global sum does). Where S = 0 the
 fields are written as nan. Vectors are written per component (``v`` -> ``vx``, ``vy``[, ``vz``]).
+A row visits every owned particle once per point, without a cell list: keep gauges to hundreds of
+points, or record them less often (``diagnostics_every``).
 
 A ``SurfaceGauge`` records, over each station (a point of the horizontal coordinates), the top of
 the material: the highest moving particle within half a particle spacing of the station's vertical
