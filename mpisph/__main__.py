@@ -121,16 +121,16 @@ def _prepare_out_dir(comm, path):
 def run(args, comm):
     from . import case as cases
     from .gauges import GaugeRecorder
-    from .wall_forces import wall_force_columns
     from .initial import particles_from_case, particles_from_frame
-    from .memory import check_fits, resident_bytes
     from .io.diagnostics import Diagnostics
     from .io.frames import check_frame, read_frame
+    from .memory import check_fits, resident_bytes
     from .observables import observable_names
     from .parallel.stop import StopOnSignal
     from .parts import make_parts
     from .progress import Progress
     from .solver import Simulation
+    from .wall_forces import wall_force_columns
 
     baseline = resident_bytes()
     module = cases.load_case_module(args.case)

@@ -30,7 +30,6 @@ class NoConvergence(Exception):
     turns it into a BlowUp that names the step."""
 
 
-
 class Stopped(Exception):
     """The run was asked to stop by a signal (parallel/stop.py) and wrote its state as a
     frame; the command line prints how to restart from it and exits with status 0."""

@@ -45,8 +45,7 @@ def _within_memory(counts, dp, what):
 
 
 def _axis_points(lo, hi, dp, what):
-    n = lattice_layers(hi - lo, dp)
-    _within_memory([n], dp, what)
+    n = lattice_layers(hi - lo, dp)  # callers check the whole lattice's count first (_within_memory)
     if n < 1:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi - lo:g} m across)")
     return lo + (np.arange(n) + 0.5) * dp

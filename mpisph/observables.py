@@ -132,6 +132,6 @@ def global_observables(sim):
     values += wall_force_values(sim) if sim.case.wall_forces else []
     values += _load_balance(sim)
     out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front, wall_force_columns(sim.case)), values))
-    for name in ("n", "rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max"):
+    for name in ("n", *LOAD_COLUMNS[:4]):  # counts
         out[name] = int(out[name])
     return out

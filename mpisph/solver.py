@@ -134,8 +134,7 @@ class Simulation:
         for rank, rep in enumerate(self.comm.allgather(local)):
             if rep is not None:
                 gid, what, pos = rep
-                self.frame_index += 1  # after the last regular frame, not over it
-                self.write_frame()
+                self._write_unscheduled_frame()
                 raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {what} "
                              f"(rank {rank}, particle {gid}, at {pos}); last frame written",
                              step=self.step, time=self.t, rank=rank, gid=gid)
