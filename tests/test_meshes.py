@@ -1,0 +1,141 @@
+"""Geometry from meshes (mpisph/meshes.py): fills of closed STL/OBJ/VTU surfaces, the refusal of a
+surface that is not watertight, and wall layers behind open surfaces."""
+
+import meshio
+import numpy as np
+import pytest
+
+from mpisph.errors import InputError
+from mpisph.geometry import box, box_walls
+from mpisph.meshes import Frame, Surface, fill, read_surface, wall_layers
+
+# The six faces of the unit cube as quads, each listed counter-clockwise seen from outside.
+CUBE_POINTS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                        [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+CUBE_QUADS = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]])
+
+
+def cube_triangles(lo, hi, drop=()):
+    """The box [lo, hi] as outward-oriented triangles, without the quads listed in ``drop``."""
+    points = np.asarray(lo) + CUBE_POINTS * (np.asarray(hi) - np.asarray(lo))
+    quads = [q for k, q in enumerate(CUBE_QUADS) if k not in drop]
+    return np.concatenate([points[np.array(quads)[:, [0, 1, 2]]], points[np.array(quads)[:, [0, 2, 3]]]])
+
+
+def write(path, triangles):
+    points = triangles.reshape(-1, 3)
+    meshio.write(path, meshio.Mesh(points, [("triangle", np.arange(len(points)).reshape(-1, 3))]))
+    return path
+
+
+def test_a_watertight_stl_box_fills_as_the_lattice_box(tmp_path):
+    lo, hi, dp = (0.2, -0.1, 0.0), (0.6, 0.2, 0.25), 0.05
+    x = fill(read_surface(write(tmp_path / "box.stl", cube_triangles(lo, hi))), dp)
+    expected = box(lo, hi, dp)
+    assert len(x) == len(expected) == 8 * 6 * 5
+    assert np.allclose(np.sort(x, axis=0), np.sort(expected, axis=0))
+
+
+def test_an_obj_sphere_fills_its_volume(tmp_path):
+    """A closed polyhedral sphere written as OBJ with quads and triangles: the fill holds the
+    lattice points of the ball (up to the facets' chords) and nothing outside it."""
+    n_theta, n_phi, r = 24, 48, 0.5
+    theta = np.linspace(0.0, np.pi, n_theta + 1)[1:-1]
+    phi = np.linspace(0.0, 2 * np.pi, n_phi, endpoint=False)
+    ring = np.array([[np.sin(t) * np.cos(f), np.sin(t) * np.sin(f), np.cos(t)] for t in theta for f in phi]) * r
+    points = np.concatenate([[[0, 0, r]], ring, [[0, 0, -r]]])
+    south = len(points) - 1
+    idx = lambda a, b: 1 + a * n_phi + b % n_phi  # noqa: E731
+    caps = [[0, idx(0, b), idx(0, b + 1)] for b in range(n_phi)]
+    caps += [[south, idx(n_theta - 2, b + 1), idx(n_theta - 2, b)] for b in range(n_phi)]
+    quads = [[idx(a, b), idx(a + 1, b), idx(a + 1, b + 1), idx(a, b + 1)]
+             for a in range(n_theta - 2) for b in range(n_phi)]
+    meshio.write(tmp_path / "ball.obj", meshio.Mesh(points, [("triangle", np.array(caps)), ("quad", np.array(quads))]))
+    dp = 0.05
+    x = fill(read_surface(tmp_path / "ball.obj"), dp, Frame(origin=(-0.5, -0.5, -0.5)))
+    radius = np.linalg.norm(x, axis=1)
+    assert radius.max() < r
+    lattice = box((-0.5,) * 3, (0.5,) * 3, dp)
+    deep = np.linalg.norm(lattice, axis=1) < r * np.cos(np.pi / n_theta)  # inside every facet
+    assert np.all(np.isin(lattice[deep].round(9), x.round(9)).all(axis=1))
+    volume = len(x) * dp**3
+    assert abs(volume / (4 / 3 * np.pi * r**3) - 1.0) < 0.03
+
+
+def test_a_vtu_surface_reads_like_the_stl(tmp_path):
+    tri = cube_triangles((0, 0, 0), (0.3, 0.3, 0.3))
+    write(tmp_path / "box.vtu", tri)
+    assert len(fill(read_surface(tmp_path / "box.vtu"), 0.05)) == 216
+
+
+def test_a_box_with_a_missing_face_is_refused_in_one_line(tmp_path):
+    surface = read_surface(write(tmp_path / "broken.stl", cube_triangles((0, 0, 0), (1, 1, 1), drop=(1,))))
+    with pytest.raises(InputError) as err:
+        fill(surface, 0.1)
+    message = str(err.value)
+    assert "'broken' is not watertight" in message and "4 of its edges" in message and "\n" not in message
+
+
+def test_a_box_with_one_face_turned_inside_out_is_refused(tmp_path):
+    tri = cube_triangles((0, 0, 0), (1, 1, 1))
+    tri[2] = tri[2][::-1]  # one triangle against the others' orientation
+    with pytest.raises(InputError, match="not watertight"):
+        fill(Surface("flipped", tri), 0.1)
+
+
+def test_an_unreadable_mesh_is_a_one_line_error(tmp_path):
+    (tmp_path / "junk.stl").write_text("not a mesh")
+    with pytest.raises(InputError, match="cannot read the mesh"):
+        read_surface(tmp_path / "junk.stl")
+
+
+def open_box(lo, hi):
+    """The floor and four sides of the box [lo, hi], normals pointing into it (the material side)."""
+    return cube_triangles(lo, hi, drop=(1,))[:, ::-1]
+
+
+def test_wall_layers_behind_an_open_box_are_box_walls_with_rounded_corners():
+    """Below the rim, the layers are box_walls' within layers dp of the box (the corners rounded);
+    above it, behind the sides' open edges, they are the rounded caps of those edges."""
+    lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.4, 0.3, 0.2), 0.02, 3
+    [(x, n)] = wall_layers([Surface("tank", open_box(lo, hi))], dp, layers)
+    cap = x[:, 2] > hi[2]
+    rim = np.clip(x[cap], lo, hi) - x[cap]
+    assert np.all(np.linalg.norm(rim, axis=1) < layers * dp) and np.all(np.abs(x[cap, 2] - hi[2]) < layers * dp)
+    x, n = x[~cap], n[~cap]
+    ref_x, ref_n = box_walls(lo, hi, dp, layers, open_sides=("+z",))
+    ref_x, ref_n = ref_x[ref_x[:, 2] < hi[2]], ref_n[ref_x[:, 2] < hi[2]]
+    depth = np.linalg.norm(np.clip(ref_x, lo, hi) - ref_x, axis=1)
+    within = depth < layers * dp
+    assert len(x) == within.sum()
+    order, ref_order = np.lexsort(x.T), np.lexsort(ref_x[within].T)
+    assert np.allclose(x[order], ref_x[within][ref_order])
+    assert np.allclose(n[order], ref_n[within][ref_order])
+
+
+def test_parts_share_the_layers_behind_their_joints_without_overlap():
+    """The same open box as two parts (floor; sides) gives the same particles as one part."""
+    lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.4, 0.3, 0.2), 0.02, 3
+    tri = open_box(lo, hi)
+    floor = np.abs(Surface("", tri).normals[:, 2] - 1.0) < 1e-12
+    [(whole, _)] = wall_layers([Surface("tank", tri)], dp, layers)
+    frame = Frame(origin=lo)
+    parts = wall_layers([Surface("floor", tri[floor]), Surface("sides", tri[~floor])], dp, layers, [frame, frame])
+    joined = np.concatenate([x for x, _ in parts])
+    assert len(joined) == len(whole)
+    assert len(np.unique(joined.round(9), axis=0)) == len(joined)
+
+
+def test_wall_layers_follow_a_tilted_floor_in_its_own_frame():
+    """A 50-degree floor: its layers lie in its frame at depths (k + 1/2) dp, normals along the floor's."""
+    theta, dp, layers = np.radians(50.0), 0.05, 3
+    along, across, up = np.array([np.cos(theta), 0, -np.sin(theta)]), np.array([0, 1.0, 0]), np.array([np.sin(theta), 0, np.cos(theta)])
+    corners = np.array([[0, 0], [1, 0], [1, 0.5], [0, 0.5]]) @ np.array([along, across])
+    tri = np.array([corners[[0, 1, 2]], corners[[0, 2, 3]]])  # normal: along x across = up
+    frame = Frame(origin=(0, 0, 0), axes=tuple(map(tuple, np.column_stack([along, across, up]))))
+    [(x, n)] = wall_layers([Surface("chute", tri)], dp, layers, [frame])
+    u = frame.local(x)
+    under = np.all((u[:, :2] > 0) & (u[:, :2] < (1.0, 0.5)), axis=1)
+    assert under.sum() == 20 * 10 * layers
+    assert np.allclose(np.unique(u[under, 2].round(12)), -(np.arange(layers)[::-1] + 0.5) * dp)
+    assert np.allclose(n[under], up)
