@@ -141,3 +141,21 @@ def surface_profile(frame, dp):
     """(bin centres, top of the deposit) over occupied dp-wide bins along x."""
     left, top, occupied = _surface_profile(frame["x"], dp)
     return left[occupied] + 0.5 * dp, top[occupied]
+
+
+def depth_averaged(values, kernel_sum):
+    """Mean over the points of a vertical gauge line inside the material (kernel sum >= 1/2) of
+    ``values`` (rows: times, columns: points); nan where no point is inside."""
+    inside = np.asarray(kernel_sum) >= 0.5
+    total = np.where(inside, np.asarray(values), 0.0).sum(axis=1)
+    count = inside.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(count > 0, total / count, np.nan)
+
+
+def barrier_coefficient(force, density, speed, depth, width):
+    """Dynamic pressure coefficient alpha = F / (rho v^2 h w) of a barrier w wide struck by a flow of
+    density rho arriving at ``speed`` v with ``depth`` h (arrays over time); nan where v h = 0."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        load = density * np.asarray(speed) ** 2 * np.asarray(depth) * width
+        return np.where(load > 0, np.asarray(force) / load, np.nan)

@@ -17,7 +17,8 @@ Both place particles at the cell centres of a lattice in a ``Frame``: origin + a
 dp), so that a face lying on a lattice plane of the frame has its particles and its wall
 particles dp/2 from it on either side. Walls of several parts (a chute on its slope, a run-out
 on the level) each take their own frame; where parts meet, a point behind more than one of them
-goes to the nearest (the first listed on a tie), so the parts' layers do not overlap.
+goes to the nearest (the first listed on a tie), so the parts' layers do not overlap, and where
+two frames' lattices meet a particle nearer than dp/2 to one of an earlier part is left out.
 """
 
 from dataclasses import dataclass
@@ -99,8 +100,12 @@ def read_surface(path, name=None):
 
 def open_edges(surface):
     """Directed edges (as vertex coordinates, (k, 2, 3)) that no triangle runs along in the opposite
-    direction: none for a watertight, consistently oriented surface."""
-    vertices, index = np.unique(surface.triangles.reshape(-1, 3), axis=0, return_inverse=True)
+    direction: none for a watertight, consistently oriented surface. Vertices closer than 1e-9 of
+    the surface's extent count as one."""
+    points = surface.triangles.reshape(-1, 3)
+    weld = 1e-9 * max(float(np.ptp(points, axis=0).max()), 1e-300)  # vertices that differ in rounding are one
+    _, first, index = np.unique(np.round(points / weld), axis=0, return_index=True, return_inverse=True)
+    vertices = points[first]
     tri = index.reshape(-1, 3)
     edges = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
     forward = {tuple(e) for e in edges}
@@ -243,8 +248,28 @@ def wall_layers(parts, dp, layers, frames=None):
             if j != k:
                 closer = dist[:, j] < dist[:, k] if j > k else dist[:, j] <= dist[:, k]
                 mine &= ~(claims[:, j] & closer)
+        for j, (earlier, _) in enumerate(out):  # where two lattices meet, the earlier part's particle stays
+            joint = mine & (dist[:, j] < depth + dp)
+            if joint.any():
+                close = nearest_on_parts(earlier, triangles, normals, part, len(parts))[0][:, k] < depth + dp
+                mine[joint] = _farther_than(x[joint], earlier[close], 0.5 * dp)
         if not mine.any():
             raise InputError(f"spacing dp={dp:g} m leaves no wall particle behind {surface.name!r}")
         towards = near[mine, k] - x[mine]
         out.append((x[mine], towards / np.linalg.norm(towards, axis=1)[:, None]))
+    return out
+
+
+@njit(cache=True)
+def _farther_than(points, others, radius):
+    """Whether each point lies farther than ``radius`` from every one of ``others`` (by pairs: the
+    callers pass the few particles near a joint of two parts)."""
+    out = np.ones(len(points), np.bool_)
+    r2 = radius * radius
+    for i in range(len(points)):
+        for j in range(len(others)):
+            d = points[i] - others[j]
+            if _dot(d, d) < r2:
+                out[i] = False
+                break
     return out

@@ -139,3 +139,26 @@ def test_wall_layers_follow_a_tilted_floor_in_its_own_frame():
     assert under.sum() == 20 * 10 * layers
     assert np.allclose(np.unique(u[under, 2].round(12)), -(np.arange(layers)[::-1] + 0.5) * dp)
     assert np.allclose(n[under], up)
+
+
+def test_where_two_frames_meet_no_wall_particles_crowd():
+    """A 50-degree slope meeting a level floor, each part in its own frame: no two wall particles
+    nearer than dp / 2, and the layers behind the joint have no hole wider than a particle."""
+    theta, dp, layers = np.radians(50.0), 0.05, 3
+    along, up = np.array([np.cos(theta), 0, -np.sin(theta)]), np.array([np.sin(theta), 0, np.cos(theta)])
+    across = np.array([0, 0.5, 0])
+    top = -1.0 * along
+    slope = np.array([[top, (0, 0, 0), across], [top, across, top + across]], float)
+    level = np.array([[(0, 0, 0), (1, 0, 0), (1, 0.5, 0)], [(0, 0, 0), (1, 0.5, 0), (0, 0.5, 0)]], float)
+    frames = [Frame(origin=tuple(top), axes=tuple(map(tuple, np.column_stack([along, (0, 1, 0), up])))), Frame()]
+    parts = wall_layers([Surface("slope", slope), Surface("level", level)], dp, layers, frames)
+    x = np.concatenate([p for p, _ in parts])
+    d = np.linalg.norm(x[:, None] - x[None], axis=2)
+    np.fill_diagonal(d, np.inf)
+    assert d.min() > 0.5 * dp
+    # a probe at every point of a fine grid behind the joint finds a wall particle within dp
+    s = np.linspace(-0.15, 0.15, 61)
+    probes = np.array([[a, 0.25, b] for a in s for b in s])
+    behind = (probes @ up < -0.25 * dp) & (probes[:, 2] < -0.25 * dp) & (np.linalg.norm(probes[:, [0, 2]], axis=1) < (layers - 1) * dp)
+    gaps = np.linalg.norm(probes[behind][:, None] - x[None], axis=2).min(axis=1)
+    assert behind.sum() > 200 and gaps.max() < dp

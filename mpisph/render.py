@@ -1,0 +1,110 @@
+"""Pictures of 3D runs, drawn off-screen with matplotlib: particles seen in perspective coloured by
+speed at chosen times, and a field on a plane cut through the body.
+
+``snapshots_png`` draws one panel per time: the moving particles of the frame nearest that time,
+coloured by speed, drawn over every wall particle in light grey (so the walls between the eye and
+the body do not hide it). ``slice_png`` draws the particles within
+half a spacing of a plane, in the plane's own coordinates, coloured by a field.
+"""
+
+import os
+
+import numpy as np
+
+from .errors import InputError
+from .io.frames import list_frames, read_frame
+from .particles import MOVING
+
+SPEED_LABEL = "speed |v| [m/s]"
+
+
+def frames_at(out_dir, times):
+    """The frames of the run in ``out_dir`` nearest each of ``times`` (walls included)."""
+    paths = list_frames(os.fspath(out_dir))
+    if not paths:
+        raise InputError(f"no complete frames (frame_*.vtkhdf) in {out_dir}")
+    stamps = np.array([read_frame(p)["t"] for p in paths])
+    return [read_frame(paths[int(np.argmin(np.abs(stamps - t)))], walls=True) for t in times]
+
+
+def _figure(panels, width=5.0, height=4.2):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width * panels + 1.0, height), dpi=120)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def snapshots_png(out_dir, times, png_path, view=(25.0, -60.0), vmax=None, title=""):
+    """Perspective views of the run in ``out_dir`` at ``times``, coloured by speed; returns the path."""
+    frames = frames_at(out_dir, times)
+    speeds = [np.linalg.norm(f["v"][f["kind"] == MOVING], axis=1) for f in frames]
+    top = vmax if vmax is not None else max(float(np.percentile(s, 99.5)) for s in speeds if len(s)) or 1.0
+    fig = _figure(len(frames))
+    everything = np.concatenate([f["x"] for f in frames])
+    lo, hi = everything.min(axis=0), everything.max(axis=0)
+    for k, (f, s) in enumerate(zip(frames, speeds)):
+        ax = fig.add_subplot(1, len(frames), k + 1, projection="3d")
+        ax.computed_zorder = False  # the walls stay behind the body from every side
+        moving = f["kind"] == MOVING
+        walls = f["x"][~moving]
+        ax.scatter(walls[:, 0], walls[:, 1], walls[:, 2], s=0.3, c="0.85", depthshade=False, rasterized=True,
+                   zorder=1)
+        x = f["x"][moving]
+        sc = ax.scatter(x[:, 0], x[:, 1], x[:, 2], s=1.0, c=s, cmap="viridis", vmin=0.0, vmax=top,
+                        depthshade=False, rasterized=True, zorder=2)
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        ax.set_zlim(lo[2], hi[2])
+        ax.set_box_aspect(hi - lo)
+        ax.view_init(*view)
+        ax.set_title(f"t = {f['t']:.2f} s", fontsize=10)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_zlabel("z [m]")
+    bar = fig.colorbar(sc, ax=fig.axes, shrink=0.7, pad=0.02)
+    bar.set_label(SPEED_LABEL)
+    if title:
+        fig.suptitle(title)
+    fig.savefig(png_path, dpi=120, bbox_inches="tight", facecolor="white")
+    return png_path
+
+
+def plane_coordinates(x, origin, u, v):
+    """Coordinates of points ``x`` in the plane origin + a u + b v (u, v orthonormal), and their
+    distance from it."""
+    u, v = np.asarray(u, float), np.asarray(v, float)
+    d = np.asarray(x) - np.asarray(origin, float)
+    n = np.cross(u, v)
+    return d @ u, d @ v, np.abs(d @ n)
+
+
+def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", label="", vmax=None, title=""):
+    """The moving particles within dp/2 of the plane origin + a u + b v at ``times``, in the plane's
+    coordinates (a along u, b along v), coloured by ``field``; returns the path."""
+    frames = frames_at(out_dir, times)
+    fig = _figure(len(frames), width=4.5, height=4.5)
+    cuts = []
+    for f in frames:
+        moving = f["kind"] == MOVING
+        if field not in f:
+            raise InputError(f"the frames in {out_dir} have no field {field!r}")
+        dp = float(np.median((f["mass"][moving] / f["rho"][moving]) ** (1.0 / 3.0)))
+        a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
+        near = dist < 0.5 * dp
+        cuts.append((a[near], b[near], np.asarray(f[field][moving])[near], dp))
+    top = vmax if vmax is not None else max(float(c[2].max()) for c in cuts if len(c[2])) or 1.0
+    for k, (f, (a, b, value, dp)) in enumerate(zip(frames, cuts)):
+        ax = fig.add_subplot(1, len(frames), k + 1)
+        sc = ax.scatter(a, b, c=value, s=4.0, cmap="magma_r", vmin=0.0, vmax=top, linewidths=0, rasterized=True)
+        ax.set_aspect("equal")
+        ax.set_title(f"t = {f['t']:.2f} s", fontsize=10)
+        ax.set_xlabel("along the cut [m]")
+        ax.set_ylabel("height [m]")
+    bar = fig.colorbar(sc, ax=fig.axes, shrink=0.8, pad=0.02)
+    bar.set_label(label or field)
+    if title:
+        fig.suptitle(title)
+    fig.savefig(png_path, dpi=120, bbox_inches="tight", facecolor="white")
+    return png_path

@@ -1,0 +1,83 @@
+"""The flume of 000_ Sec. 5.4 built from its STL files (cases/flume_3d.py, cases/flume/): the files
+are the ones scripts/make_flume_stl.py writes, the soil sits on the chute's lattice, no two
+particles crowd, and a small run on 8 ranks (oversubscribed) ends with the same bits as on 1."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.meshes import read_surface
+from mpisph.neighbours import neighbour_lists
+from mpirun import mpisph
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def make_flume_stl():
+    spec = importlib.util.spec_from_file_location("make_flume_stl", ROOT / "scripts" / "make_flume_stl.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def flume(**overrides):
+    module = load_case_module("flume_3d")
+    return build_case(module, resolve_params(module, {k: str(v) for k, v in overrides.items()}))
+
+
+def test_the_shipped_stl_files_are_the_scripts(tmp_path):
+    script = make_flume_stl()
+    script.write(tmp_path)
+    for name in script.SURFACES:
+        shipped = read_surface(ROOT / "cases" / "flume" / f"{name}.stl").triangles
+        np.testing.assert_allclose(shipped, read_surface(tmp_path / f"{name}.stl").triangles, atol=1e-12)
+
+
+def test_the_soil_sits_on_the_chute_lattice():
+    script = make_flume_stl()
+    case = flume(dp=0.1)
+    soil = case.bodies[0].x
+    along, across, up = script.slope_axes()
+    u = (soil - script.chute_top()) @ np.column_stack([along, across, up])
+    dp = 0.1
+    layers = [round(script.SOIL_LENGTH / dp), round(script.WIDTH / dp), round(script.SOIL_DEPTH / dp)]
+    assert len(soil) == np.prod(layers)
+    for a in range(3):
+        k = u[:, a] / dp - 0.5
+        assert np.allclose(k, np.round(k), atol=1e-9) and k.min() > -1e-9
+    chute = next(w for w in case.walls if w.name == "chute")
+    w = (chute.x - script.chute_top()) @ np.column_stack([along, across, up])
+    under = (w[:, 0] > 0) & (w[:, 0] < script.CHUTE_LENGTH) & (w[:, 1] > 0) & (w[:, 1] < script.WIDTH)
+    depth = -w[under, 2] / dp - 0.5  # the floor's layers continue the soil's lattice below the floor
+    assert np.allclose(depth, np.round(depth), atol=1e-9) and set(np.round(depth)) == {0.0, 1.0, 2.0}
+    assert [w.slip for w in case.walls] == [False, True, False, True, False]
+
+
+def test_no_two_particles_of_the_flume_crowd():
+    """Soil and every wall at dp = 0.1: no pair nearer than dp / 2 (the joints of the parts)."""
+    case = flume(dp=0.1)
+    x = np.concatenate([case.bodies[0].x] + [w.x for w in case.walls])
+    start, nbr = neighbour_lists(x, np.arange(len(x)), np.zeros(len(x), np.int8), len(x), 0.05, x.min(axis=0) - 0.1)
+    assert len(nbr) == 0
+
+
+def test_the_flume_on_eight_ranks_ends_with_the_bits_of_one(tmp_path):
+    args = ["--set", "dp=0.1", "--t-end", "0.12", "--output-interval", "0.06", "--quiet"]
+    ends = {}
+    for ranks in (1, 8):
+        out = tmp_path / f"r{ranks}"
+        r = mpisph(["flume_3d", *args, "--out", out], ranks=ranks, timeout=600)
+        assert r.returncode == 0, r.stderr
+        ends[ranks] = read_frame(list_frames(out)[-1])
+        d = read_diagnostics(out / "diagnostics.csv")
+        assert d["kinetic_energy"][-1] > 0 and "force_barrier_x" in d
+        assert (out / "gauge_approach.csv").exists() and (out / "gauge_depth.csv").exists()
+    one, eight = ends[1], ends[8]
+    assert one["step"] >= 50 and one["step"] == eight["step"]
+    for name in ("gid", "x", "v", "rho", "p", "stress", "plastic_strain"):
+        np.testing.assert_array_equal(one[name], eight[name], err_msg=name)
+
