@@ -9,6 +9,7 @@ from mpisph.correction import correction_matrix
 from mpisph.kernels import Kernel
 from mpisph.materials import DruckerPrager, ElasticSolid
 from mpisph.neighbours import neighbour_lists
+from mpisph.particles import MOVING, WALL, WALL_SLIP
 from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
 from mpisph.physics.solid import shear_force_tensor, stress_acceleration, velocity_gradient
 from mpisph.tensors import packed, unpacked
@@ -173,3 +174,28 @@ def test_material_constants():
     sig = geostatic_stress(np.array([[0.0, 0.5]]), 2.0, m, 9.8)[0]
     assert sig[1, 1] == pytest.approx(-1850 * 9.8 * 1.5)
     assert sig[0, 0] == sig[2, 2] == pytest.approx((1 - math.sin(math.radians(25))) * sig[1, 1])
+
+
+def test_a_free_slip_wall_exerts_no_shear_traction():
+    """A particle in pure shear (s_xy only) dp/2 above a floor of three wall rows (normal y): with
+    a free-slip floor its wall partners, mirror images with s_xy reversed, add nothing along x; a
+    no-slip floor, whose partners carry s_xy itself, pushes it along x (the traction 2 s_xy)."""
+    gx, gy = np.meshgrid((np.arange(9) - 4.0) * DP, -(np.arange(3) + 0.5) * DP, indexing="ij")
+    x = np.concatenate([[[0.0, 0.5 * DP]], np.column_stack([gx.ravel(), gy.ravel()])])
+    n = len(x)
+    stress = np.zeros((n, 3, 3))
+    stress[0, 0, 1] = stress[0, 1, 0] = 1e3
+    normal = np.zeros_like(x)
+    normal[:, 1] = 1.0
+    mass, rho = np.full(n, 1000 * DP**2), np.full(n, 1000.0)
+    along = {}
+    for name, wall in (("no-slip", WALL), ("free-slip", WALL_SLIP)):
+        kind = np.full(n, wall, np.int8)
+        kind[0] = MOVING
+        start, nbr = neighbour_lists(x, np.arange(n), kind, n, 2 * H, x.min(axis=0) - DP)
+        acc = np.zeros((n, 2))
+        stress_acceleration(n, start, nbr, x, np.zeros((n, 2)), rho, np.zeros(n), packed(stress), mass, kind,
+                            normal, 30.0, 40.0, KERNEL, acc)
+        along[name] = acc[0, 0]
+    assert abs(along["no-slip"]) > 1.0
+    assert abs(along["free-slip"]) < 1e-12 * abs(along["no-slip"])

@@ -51,7 +51,14 @@ B is computed by correction.py (the transport-velocity shift uses it too).
 
 A wall particle takes the stress and density of the material particle it
 interacts with and the mirrored velocity of walls.py (000_ Sec. 5: no-slip
-walls after Bui et al. 2008).
+walls after Bui et al. 2008). A free-slip wall is a mirror plane: its partner
+is the mirror image of i, with velocity v_i mirrored in its normal part only
+(walls.py) and stress R sigma_i R, R = I - 2 n n^T. The shear stress across
+the wall (n-t) then cancels in the pair sum s_i + R s_i R and the wall pushes
+only along its normal, which is what free slip means: taking s_i unmirrored,
+as for a no-slip wall, left a tangential traction 2 s_nt on the particles
+beside it, and in flume_3d a layer along each free-slip side wall kept
+sliding at 0.2 m/s after the mass had come to rest.
 
 The order of the sub-steps of a time step is the integrator's
 (integrators/position_verlet.py).
@@ -63,7 +70,7 @@ from numba import njit
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
-from ..particles import MOVING, Field, is_wall
+from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity
@@ -158,6 +165,18 @@ def _tensor_times(T, k, p, dim, d0, d1, d2):
             T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + T[k, 2, 2] * d2)
 
 
+@njit(inline="always")
+def _mirrored_tensor_times(T, k, p, dim, d0, d1, d2, normal, j):
+    """(R T_k R) . d with R = I - 2 n n^T, the mirror in the free-slip wall of particle j (normal n):
+    T_k's components across the wall (n-t) change sign, those along and normal to it stay."""
+    n0, n1 = normal[j, 0], normal[j, 1]
+    n2 = normal[j, 2] if dim == 3 else 0.0
+    dn = d0 * n0 + d1 * n1 + d2 * n2
+    y0, y1, y2 = _tensor_times(T, k, p, dim, d0 - 2.0 * dn * n0, d1 - 2.0 * dn * n1, d2 - 2.0 * dn * n2)
+    yn = y0 * n0 + y1 * n1 + y2 * n2
+    return y0 - 2.0 * yn * n0, y1 - 2.0 * yn * n1, y2 - 2.0 * yn * n2
+
+
 @njit(cache=True)
 def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0, eta, k, acc):
     """acc += the stress part of dv/dt of the moving particles (module docstring); eta <= 0
@@ -166,7 +185,7 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0,
     The shear part takes T = s B from ``shear_force_tensor`` (corrected), or the packed
     stress itself, s = sigma + p I being formed on the fly (Eq. 25 as printed: no copy).
     T_i is the same for every pair of i and multiplies sum_j V_j e_ij W'_ij once; a wall
-    partner takes the state of i.
+    partner takes the state of i, mirrored in a free-slip wall (module docstring).
     """
     dim = xc.shape[1]
     for i in range(n):
@@ -179,14 +198,19 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0,
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
             q = j
+            mirror = False
             if is_wall(kind[j]):  # the wall takes the state of i; walls.py: off the common path
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 q = i
+                mirror = kind[j] == WALL_SLIP
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = 1.0 if eta <= 0.0 else min(eta * max(u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[q] - beta * 0.5 * (rho[i] + rho[q]) * c0 * u_jump
             f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
-            t0, t1, t2 = _tensor_times(T, q, p, dim, d0, d1, d2)
+            if mirror:
+                t0, t1, t2 = _mirrored_tensor_times(T, i, p, dim, d0, d1, d2, normal, j)
+            else:
+                t0, t1, t2 = _tensor_times(T, q, p, dim, d0, d1, d2)
             a0 += f * (t0 - pressure * d0)
             a1 += f * (t1 - pressure * d1)
             a2 += f * (t2 - pressure * d2)
