@@ -1,13 +1,18 @@
 """A run asked to stop by SIGUSR1 (forwarded by mpirun, as a batch system's walltime warning) or
 SIGTERM (sent to the ranks, as srun and scancel do) finishes its step, writes a frame, says how
-to restart and exits 0; the restart continues from that frame (parallel/stop.py)."""
+to restart and exits 0; the restart continues from that frame (parallel/stop.py) to the bits of a
+run never stopped. A run killed with SIGKILL while it writes a frame leaves only complete frames
+(io/frames.py writes ``.part`` files and renames them)."""
 
 import os
 import re
 import signal
 import subprocess
 import sys
+import time
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
@@ -56,3 +61,53 @@ def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
     assert last["t"] == pytest.approx(t_end) and last["step"] > state["step"]
     diag = read_diagnostics(out / "diagnostics.csv")
     assert diag["t"][-1] == pytest.approx(t_end)
+
+
+def test_a_run_stopped_by_a_signal_and_restarted_ends_with_the_bits_of_an_uninterrupted_one(tmp_path):
+    """SIGTERM at whatever step the run has reached, a restart from the frame it writes, and the
+    run without the stop, both to a little past that step: the same particles, bit for bit."""
+    stopped = tmp_path / "stopped"
+    proc = _start([sys.executable], stopped)
+    code, stdout, stderr = signal_when_running(proc, stopped, signal.SIGTERM)
+    assert code == 0, stderr
+    frame = list_frames(stopped)[-1]
+    state = read_frame(frame)
+    t_end = repr(state["t"] + 0.02)
+    r = mpisph(["dam_break_2d", "--restart", frame, "--t-end", t_end, "--out", stopped, "--quiet"], ranks=2)
+    assert r.returncode == 0, r.stderr
+    straight = tmp_path / "straight"
+    r = mpisph([*RUN, "--t-end", t_end, "--out", straight, "--quiet"], ranks=1)
+    assert r.returncode == 0, r.stderr
+    a, b = read_frame(list_frames(stopped)[-1]), read_frame(list_frames(straight)[-1])
+    assert a["step"] == b["step"] > state["step"] and a["t"] == b["t"]
+    for name in ("gid", "x", "v", "rho", "p"):
+        np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+
+
+def test_a_run_killed_while_writing_a_frame_leaves_only_complete_frames(tmp_path):
+    """kill -9 while a frame is being written (its ``.part`` file exists): every file under a
+    frame's name is complete, and the half-written one is not listed."""
+    big = ["dam_break_2d", "--set", "dp=0.004", "--t-end", "50", "--output-interval", "0.0005"]
+    for attempt in range(5):
+        out = tmp_path / f"attempt{attempt}"
+        env = dict(MPI_ENV, **os.environ)
+        env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+        proc = subprocess.Popen([sys.executable, "-m", "mpisph", *big, "--out", str(out), "--quiet"], cwd=ROOT,
+                                env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        caught = False
+        deadline = time.monotonic() + 300
+        while time.monotonic() < deadline and proc.poll() is None:
+            if len(list_frames(out)) >= 2 and list(out.glob("*.part")):
+                os.kill(proc.pid, signal.SIGKILL)
+                caught = True
+                break
+        proc.wait(timeout=60)
+        if caught and list(out.glob("*.part")):
+            break
+    else:
+        pytest.fail("no frame write was caught in five attempts")
+    frames = list_frames(out)
+    assert len(frames) >= 2
+    for frame in frames:
+        check_frame(frame)
+    assert all(not p.name.endswith(".part") for p in map(Path, frames))
