@@ -1,4 +1,5 @@
 """Command line: python -m mpisph CASE [options] | list | info CASE | report FRAME... | plot OUT_DIR [PNG]
+| compare CASE --stabiliser A,B,... (compare.py)
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
 ``mpisph: error: ...`` on stderr and status 2 before anything is written; a
@@ -19,7 +20,9 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
          "       python -m mpisph list\n"
          "       python -m mpisph info CASE\n"
          "       python -m mpisph report FRAME [FRAME ...]\n"
-         "       python -m mpisph plot OUT_DIR [PNG]")
+         "       python -m mpisph plot OUT_DIR [PNG]\n"
+         "       python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
+         "[--out DIR] [--colour FIELD]")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -213,6 +216,11 @@ def main(argv=None):
             if comm.rank == 0:
                 cmd_plot(*argv[1:])
             return 0
+        if argv[:1] == ["compare"]:
+            if comm.size > 1:
+                raise InputError("compare starts its own mpirun for each run: start it without mpirun")
+            from .compare import main as compare
+            return compare(argv[1:])
         run(_parser().parse_args(argv), comm)
         return 0
     except InputError as e:

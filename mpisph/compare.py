@@ -1,0 +1,220 @@
+"""``python -m mpisph compare CASE --stabiliser none,tvf,utvf [--set NAME=VALUE ...] [-n RANKS]
+[--out DIR] [--colour FIELD]``: the case once per stabiliser, side by side.
+
+Each run goes to OUT/<stabiliser>/ (OUT defaults to runs/compare_CASE) under ``mpirun -n RANKS``;
+OUT/compare.md gets a table with, for each, how the run ended and, from its last frame and its
+diagnostics:
+
+- clustering, inner voids and the closest pair over dp (instability.py, walls included);
+- the change of total energy, kinetic plus gravitational, dE = E_end - E_0 in J and as a fraction
+  of the energy that moved, max KE + max |PE - PE_0|;
+- for a case without walls, the drift of linear momentum from gravity's impulse, |P_end - P_0 -
+  M g t| / (M v_ref), and with neither gravity nor a periodic axis the drift of angular momentum,
+  |L_end - L_0| / (M v_ref R), where v_ref = sqrt(2 max KE / M) and R is the initial radius of
+  gyration (walls exchange momentum with the body and periodic wraps move r x p, so there the
+  columns would say nothing and are left out);
+- the runout (last ``front`` minus the first) where the case records a front.
+
+OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
+runs seen along y) and OUT/compare_energy.png the kinetic and total energy against time. A run
+that blows up (status 3) is measured at its last frame; a run that fails otherwise is listed as
+failed.
+"""
+
+import argparse
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .case import build_case, load_case_module, resolve_params
+from .errors import InputError
+from .instability import tensile_instability
+from .io.diagnostics import read_diagnostics
+from .io.frames import list_frames, read_frame
+from .launch import mpirun_mpisph
+from .particles import MOVING
+from .stabilisers import stabiliser_names
+
+USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
+         "[--out DIR] [--colour FIELD]")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise InputError(message)
+
+
+def parse(argv):
+    p = _Parser(prog="mpisph compare", usage=USAGE)
+    p.add_argument("case")
+    p.add_argument("--stabiliser", required=True, help="stabilisers to compare, separated by commas")
+    p.add_argument("--set", dest="overrides", nargs="+", action="extend", default=[], metavar="NAME=VALUE")
+    p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run")
+    p.add_argument("--out", help="output directory (default runs/compare_CASE)")
+    p.add_argument("--colour", default="speed", help="particle field of the picture (default: speed)")
+    a = p.parse_args(argv)
+    if a.ranks < 1:
+        raise InputError(f"-n takes a positive number of ranks, not {a.ranks}")
+    return a
+
+
+def _overrides(items):
+    out = {}
+    for item in items:
+        if "=" not in item:
+            raise InputError(f"--set takes NAME=VALUE, not {item!r}")
+        name, value = item.split("=", 1)
+        if name.strip() == "stabiliser":
+            raise InputError("the stabilisers are chosen by --stabiliser, not --set")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def check(case_name, stabilisers, overrides):
+    """The case module and one Case of it (for domain and walls); InputError for a case without a
+    ``stabiliser`` parameter or a stabiliser it does not take."""
+    module = load_case_module(case_name)
+    if "stabiliser" not in module.PARAMS:
+        raise InputError(f"case {case_name!r} has no stabiliser parameter to compare")
+    if not stabilisers:
+        raise InputError("--stabiliser names no stabiliser")
+    for name in stabilisers:
+        resolve_params(module, {**overrides, "stabiliser": name})
+    return module, build_case(module, resolve_params(module, overrides))
+
+
+def run_one(case_name, stabiliser, overrides, ranks, out):
+    """Run the case with ``stabiliser`` into ``out``; how it ended: done, blew up, or failed."""
+    sets = [f"{k}={v}" for k, v in {**overrides, "stabiliser": stabiliser}.items()]
+    r = mpirun_mpisph([case_name, "--set", *sets, "--out", out, "--quiet"], ranks=ranks)
+    if r.returncode == 0:
+        return "done", ""
+    if r.returncode == 3:
+        return "blew up", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else ""
+    return "failed", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"exit {r.returncode}"
+
+
+def measures(out, case):
+    """The table's figures for the run in ``out`` (module docstring)."""
+    d = read_diagnostics(Path(out) / "diagnostics.csv")
+    frames = list_frames(os.fspath(out))
+    first, last = read_frame(frames[0]), read_frame(frames[-1], walls=True)
+    lo, hi = case.domain
+    periods = [hi[a] - lo[a] if case.periodic[a] else 0.0 for a in range(case.dim)]
+    m = tensile_instability(last, lo, periods)
+    energy = d["kinetic_energy"] + d["potential_energy"]
+    moved = d["kinetic_energy"].max() + np.abs(d["potential_energy"] - d["potential_energy"][0]).max()
+    out = {"t": float(last["t"]), "clustering": m["clustering"], "inner_voids": m["inner_voids"],
+           "closest": m["min_spacing"], "dE": float(energy[-1] - energy[0]),
+           "dE_rel": float((energy[-1] - energy[0]) / moved) if moved > 0 else 0.0}
+    mass = float(d["mass"][0])
+    v_ref = np.sqrt(2.0 * d["kinetic_energy"].max() / mass) if mass > 0 else 0.0
+    if not case.walls and v_ref > 0:
+        dim = case.dim
+        p = np.array([d[f"momentum_{c}"] for c in "xyz"[:dim]])
+        impulse = mass * np.asarray(case.gravity)[:, None] * (d["t"] - d["t"][0])
+        out["dP"] = float(np.linalg.norm(p[:, -1] - p[:, 0] - impulse[:, -1]) / (mass * v_ref))
+        if not np.any(case.gravity) and not any(case.periodic):
+            names = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
+            ang = np.array([d[n] for n in names])
+            x0 = first["x"]
+            radius = np.sqrt(np.mean(np.sum((x0 - x0.mean(axis=0)) ** 2, axis=1)))
+            out["dL"] = float(np.linalg.norm(ang[:, -1] - ang[:, 0]) / (mass * v_ref * radius))
+    if "front" in d:
+        out["runout"] = float(d["front"][-1] - d["front"][0])
+    return out
+
+
+def _cell(row, key, fmt):
+    return fmt.format(row[key]) if key in row else "–"
+
+
+def table(case_name, rows):
+    """Markdown lines of the comparison."""
+    lines = [f"| stabiliser ({case_name}) | ended | t [s] | clustering | inner voids | closest pair / dp | "
+             f"dE [J] | dE / moved | momentum drift | angular drift | runout [m] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, (status, row) in rows.items():
+        if row is None:
+            lines.append(f"| {name} | {status} | " + " | ".join(["–"] * 9) + " |")
+            continue
+        lines.append(f"| {name} | {status} | {row['t']:.4g} | {100 * row['clustering']:.3f} % | "
+                     f"{100 * row['inner_voids']:.3f} % | {row['closest']:.3f} | {row['dE']:.4g} | "
+                     f"{row['dE_rel']:.3g} | {_cell(row, 'dP', '{:.2e}')} | {_cell(row, 'dL', '{:.2e}')} | "
+                     f"{_cell(row, 'runout', '{:.4g}')} |")
+    return lines
+
+
+def _field(frame, name):
+    moving = frame["kind"] == MOVING
+    if name == "speed":
+        return np.linalg.norm(frame["v"][moving], axis=1)
+    if name not in frame:
+        raise InputError(f"--colour {name}: the frames have no such field")
+    value = np.asarray(frame[name])[moving]
+    return value if value.ndim == 1 else np.linalg.norm(value.reshape(len(value), -1), axis=1)
+
+
+def pictures(runs, colour, out):
+    """compare_particles.png and compare_energy.png in ``out`` from {stabiliser: run directory}."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    done = {k: v for k, v in runs.items() if list_frames(os.fspath(v))}
+    fig = Figure(figsize=(4.5 * max(len(done), 1), 4.2), dpi=110)
+    FigureCanvasAgg(fig)
+    for k, (name, run) in enumerate(done.items()):
+        last = read_frame(list_frames(os.fspath(run))[-1], walls=True)
+        moving = last["kind"] == MOVING
+        x = last["x"]
+        axes = (0, x.shape[1] - 1)
+        ax = fig.add_subplot(1, len(done), k + 1)
+        ax.scatter(x[~moving][:, axes[0]], x[~moving][:, axes[1]], s=0.5, c="0.85", linewidths=0, rasterized=True)
+        sc = ax.scatter(x[moving][:, axes[0]], x[moving][:, axes[1]], s=1.0, c=_field(last, colour), linewidths=0,
+                        rasterized=True)
+        ax.set_aspect("equal")
+        ax.set_title(f"{name}, t = {last['t']:.3g} s", fontsize=10)
+        fig.colorbar(sc, ax=ax, shrink=0.8).set_label(colour)
+    fig.savefig(out / "compare_particles.png", bbox_inches="tight", facecolor="white")
+    fig = Figure(figsize=(10, 4), dpi=110)
+    FigureCanvasAgg(fig)
+    kinetic, total = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
+    for name, run in done.items():
+        d = read_diagnostics(Path(run) / "diagnostics.csv")
+        e = d["kinetic_energy"] + d["potential_energy"]
+        kinetic.plot(d["t"], d["kinetic_energy"], label=name)
+        total.plot(d["t"], e - e[0], label=name)
+    kinetic.set_xlabel("t [s]")
+    kinetic.set_ylabel("kinetic energy [J]")
+    total.set_xlabel("t [s]")
+    total.set_ylabel("E - E_0, kinetic + gravitational [J]")
+    kinetic.legend()
+    fig.tight_layout()
+    fig.savefig(out / "compare_energy.png", facecolor="white")
+
+
+def main(argv):
+    a = parse(argv)
+    names = stabiliser_names(a.stabiliser)
+    overrides = _overrides(a.overrides)
+    _, case = check(a.case, names, overrides)
+    out = Path(a.out or Path("runs") / f"compare_{a.case}")
+    out.mkdir(parents=True, exist_ok=True)
+    runs, rows = {}, {}
+    for name in names:
+        runs[name] = out / name
+        status, why = run_one(a.case, name, overrides, a.ranks, runs[name])
+        has_frames = runs[name].is_dir() and list_frames(os.fspath(runs[name]))
+        rows[name] = (status + (f": {why}" if why and status != "done" else ""),
+                      measures(runs[name], case) if status != "failed" and has_frames else None)
+        print(f"compare: {a.case} with {name}: {status}", flush=True)
+    sets = " ".join(f"--set {k}={v}" for k, v in overrides.items())
+    text = [f"# {a.case}: stabilisers side by side", "",
+            f"`python -m mpisph compare {a.case} --stabiliser {','.join(names)} {sets} -n {a.ranks}` "
+            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows), "",
+            "![particles](compare_particles.png)", "", "![energy](compare_energy.png)", ""]
+    pictures(runs, a.colour, out)
+    (out / "compare.md").write_text("\n".join(text))
+    print(f"compare: wrote {out / 'compare.md'}", flush=True)
+    return 0
