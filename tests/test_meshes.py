@@ -141,9 +141,15 @@ def test_wall_layers_follow_a_tilted_floor_in_its_own_frame():
     assert np.allclose(n[under], up)
 
 
-def test_where_two_frames_meet_no_wall_particles_crowd():
+def _hole(walls, probes):
+    """The largest distance from a probe point to its nearest wall particle."""
+    return max(np.linalg.norm(walls - p, axis=1).min() for p in probes)
+
+
+def test_where_two_frames_meet_no_wall_particles_crowd_and_no_hole_opens():
     """A 50-degree slope meeting a level floor, each part in its own frame: no two wall particles
-    nearer than dp / 2, and the layers behind the joint have no hole wider than a particle."""
+    nearer than 3/4 dp, and behind the joint no point farther from a wall particle than in a lattice
+    of its own (sqrt(3)/2 dp at the centre of a cell)."""
     theta, dp, layers = np.radians(50.0), 0.05, 3
     along, up = np.array([np.cos(theta), 0, -np.sin(theta)]), np.array([np.sin(theta), 0, np.cos(theta)])
     across = np.array([0, 0.5, 0])
@@ -155,10 +161,29 @@ def test_where_two_frames_meet_no_wall_particles_crowd():
     x = np.concatenate([p for p, _ in parts])
     d = np.linalg.norm(x[:, None] - x[None], axis=2)
     np.fill_diagonal(d, np.inf)
-    assert d.min() > 0.5 * dp
-    # a probe at every point of a fine grid behind the joint finds a wall particle within dp
-    s = np.linspace(-0.15, 0.15, 61)
-    probes = np.array([[a, 0.25, b] for a in s for b in s])
-    behind = (probes @ up < -0.25 * dp) & (probes[:, 2] < -0.25 * dp) & (np.linalg.norm(probes[:, [0, 2]], axis=1) < (layers - 1) * dp)
-    gaps = np.linalg.norm(probes[behind][:, None] - x[None], axis=2).min(axis=1)
-    assert behind.sum() > 200 and gaps.max() < dp
+    assert d.min() > 0.75 * dp - 1e-12
+    rng = np.random.default_rng(3)
+    probes = rng.uniform((-0.2, 0.1, -0.2), (0.2, 0.4, 0.0), (4000, 3))
+    inner = (probes @ up < -0.5 * dp) & (probes[:, 2] < -0.5 * dp) & (np.maximum(-probes @ up, -probes[:, 2]) < (layers - 0.5) * dp)
+    assert inner.sum() > 500 and _hole(x, probes[inner]) < 0.87 * dp
+
+
+def test_coplanar_walls_in_two_frames_leave_no_hole_at_their_seam():
+    """Two side walls in one plane (y = 0), one on a lattice along a 50-degree slope, one level,
+    meeting along a line: inside the wall layers no point is farther than sqrt(3)/2 dp from a wall
+    particle, at the seam as anywhere (the chute's and run-out's side walls of flume_3d)."""
+    theta, dp, layers = np.radians(50.0), 0.05, 3
+    along, up = np.array([np.cos(theta), 0, -np.sin(theta)]), np.array([np.sin(theta), 0, np.cos(theta)])
+    seam = np.array([np.tan(theta / 2), 0, 1.0]) * 0.5  # the bisector of the angle at the foot
+    left = np.array([[-0.5 * along * 0, seam, -0.4 * along + 0.5 * up], [(0, 0, 0), -0.4 * along + 0.5 * up, -0.4 * along]])
+    right = np.array([[(0, 0, 0), (0.4, 0, 0), (0.4, 0, 0.5)], [(0, 0, 0), (0.4, 0, 0.5), seam]])
+    y = np.array([0, 1.0, 0])
+    orient = lambda t: t if np.cross(t[0, 1] - t[0, 0], t[0, 2] - t[0, 0]) @ y > 0 else t[:, ::-1]  # noqa: E731
+    frames = [Frame(origin=(0, 0, 0), axes=tuple(map(tuple, np.column_stack([along, y, up])))), Frame()]
+    parts = wall_layers([Surface("chute_side", orient(left)), Surface("runout_side", orient(right))], dp, layers, frames)
+    x = np.concatenate([p for p, _ in parts])
+    rng = np.random.default_rng(4)
+    s = rng.uniform(0.1, 0.4, 3000)[:, None]
+    probes = s * seam / np.linalg.norm(seam) + rng.uniform(-2 * dp, 2 * dp, (3000, 1)) * np.array([1.0, 0, -np.tan(theta / 2)]) / np.hypot(1, np.tan(theta / 2))
+    probes[:, 1] = -rng.uniform(0.5 * dp, (layers - 0.5) * dp, 3000)
+    assert _hole(x, probes) < 0.87 * dp
