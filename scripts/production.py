@@ -82,6 +82,15 @@ def cube_failure_3d(ranks, reuse):
     cut = render.slice_png(out, (0.5, 1.0), IMG / "cube_failure_3d_abc.png", (0.0, 0.0, 0.0), diagonal,
                            (0.0, 0.0, 1.0), field="plastic_strain", label="accumulated deviatoric plastic strain",
                            title="cube_failure_3d: the diagonal plane ABC")
+    bands = []
+    for f in render.frames_at(out, (0.5, 1.0)):
+        moving = f["kind"] == MOVING
+        a, b, dist = render.plane_coordinates(f["x"][moving], (0.0, 0.0, 0.0), diagonal, (0.0, 0.0, 1.0))
+        near = dist < 0.5 * float(f["params"]["dp"])
+        strain, height = f["plastic_strain"][moving][near], b[near]
+        top, foot = height > 0.8 * height.max(), height < 0.2 * height.max()
+        bands.append(f"t = {f['t']:.1f} s: {strain[top].mean():.2f} in the top fifth of the cut, "
+                     f"{strain[foot].mean():.2f} in the bottom fifth, {strain.max():.2f} at most")
     misses = [f"cube_failure_3d: clustering {100 * c:.3f} % at t = {t:.2f} s (at most 0.1 %)"
               for t, c, _, _ in rows if c > 0.001] + ([f"cube_failure_3d: {blow_up}"] if blow_up else [])
     n = len(read_frame(list_frames(out)[0])["x"])
@@ -97,7 +106,8 @@ def cube_failure_3d(ranks, reuse):
         "",
         "The plane ABC: the paper draws it in Fig. 22; we take the vertical plane through the cube's "
         "diagonal (through two opposite vertical edges), the particles within dp/2 of it. 000_ Fig. 24 shows the "
-        "shear band start at the top of the column and run down to its foot between 0.5 s and 1 s.",
+        "shear band start at the top of the column and run down to its foot between 0.5 s and 1 s. The mean "
+        "accumulated deviatoric plastic strain in the cut: " + "; ".join(bands) + ".",
         "",
         f"![plane ABC]({Path(cut).relative_to(DOCS)})",
     ]
