@@ -175,7 +175,8 @@ def test_coplanar_walls_in_two_frames_leave_no_hole_at_their_seam():
     theta, dp, layers = np.radians(50.0), 0.05, 3
     along, up = np.array([np.cos(theta), 0, -np.sin(theta)]), np.array([np.sin(theta), 0, np.cos(theta)])
     seam = np.array([np.tan(theta / 2), 0, 1.0]) * 0.5  # the bisector of the angle at the foot
-    left = np.array([[-0.5 * along * 0, seam, -0.4 * along + 0.5 * up], [(0, 0, 0), -0.4 * along + 0.5 * up, -0.4 * along]])
+    foot, top, top_up = np.zeros(3), -0.4 * along, -0.4 * along + 0.5 * up
+    left = np.array([[foot, seam, top_up], [foot, top_up, top]])
     right = np.array([[(0, 0, 0), (0.4, 0, 0), (0.4, 0, 0.5)], [(0, 0, 0), (0.4, 0, 0.5), seam]])
     y = np.array([0, 1.0, 0])
     orient = lambda t: t if np.cross(t[0, 1] - t[0, 0], t[0, 2] - t[0, 0]) @ y > 0 else t[:, ::-1]  # noqa: E731
