@@ -151,6 +151,11 @@ def flume_3d(ranks, reuse):
     arriving = np.nan_to_num(v) >= 0.1 * np.nanmax(v)  # alpha describes the impact, not the deposit at rest
     alpha = np.where(arriving, measure.barrier_coefficient(force, float(params["rho0"]), v, top, 1.0), np.nan)
     peak = int(np.argmax(force))
+    # the engineering coefficient: the peak force over the largest momentum flux of the approaching
+    # flow at the gauge before it (rho v^2 h w at its maximum)
+    flux = np.nan_to_num(float(params["rho0"]) * v**2 * top * 1.0)
+    before = int(np.argmax(flux[:peak + 1]))
+    alpha_peak = force[peak] / flux[before] if flux[before] > 0 else float("nan")
     rows = instability_rows(out, (1.0, 2.0, 4.0))
     snap = render.snapshots_png(out, (0.0, 1.0, 2.0, 4.0), IMG / "flume_3d_speed.png", view=(30.0, -65.0),
                                 title="flume_3d: speed")
@@ -190,7 +195,10 @@ def flume_3d(ranks, reuse):
            "they squeeze through the dummy walls where the flow turns at the foot of the slope and "
            "meets the barrier, and one finally left the domain.", ""] if blow_up else
           [f"Soil particles more than dp/2 behind a side wall or the floor at the end: {leaked}.", ""]),
-        f"- Peak force on the barrier: **{force[peak] / 1e3:.2f} kN** (x) at t = {d['t'][peak]:.2f} s.",
+        f"- Peak force on the barrier: **{force[peak] / 1e3:.2f} kN** (x) at t = {d['t'][peak]:.2f} s. The "
+        f"approaching flow's largest momentum flux at the gauge before it, rho v^2 h w = {flux[before] / 1e3:.2f} kN "
+        f"at t = {d['t'][before]:.2f} s (v = {v[before]:.2f} m/s, h = {top[before]:.2f} m), gives **alpha = "
+        f"{alpha_peak:.2f}** (peak force over approach flux).",
         f"- At rest: the largest speed at t = {t_frames[-1]:.1f} s is {speed[-1]:.3g} m/s, "
         f"{at_rest:.2g} of its peak {speed.max():.3g} m/s (criterion: below 0.01).",
         f"- Load balance while the mass moves (kinetic energy above 1 % of its peak): largest imbalance "
