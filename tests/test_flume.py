@@ -81,3 +81,19 @@ def test_the_flume_on_eight_ranks_ends_with_the_bits_of_one(tmp_path):
     for name in ("gid", "x", "v", "rho", "p", "stress", "plastic_strain"):
         np.testing.assert_array_equal(one[name], eight[name], err_msg=name)
 
+
+
+def test_a_soil_surface_that_is_not_watertight_is_one_line_from_the_command_line(tmp_path):
+    import shutil
+
+    import meshio
+
+    for path in (ROOT / "cases" / "flume").glob("*.stl"):
+        shutil.copy(path, tmp_path)
+    with np.errstate(over="ignore"):  # meshio probes an ASCII STL as binary first
+        soil = meshio.read(tmp_path / "soil.stl")
+    cells = soil.cells_dict["triangle"][1:]  # one facet gone
+    meshio.write(tmp_path / "soil.stl", meshio.Mesh(soil.points, [("triangle", cells)]), binary=False)
+    r = mpisph(["flume_3d", "--set", f"geometry={tmp_path}", "--out", tmp_path / "out"], ranks=1, timeout=300)
+    assert r.returncode == 2
+    assert "the surface 'soil' is not watertight" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
