@@ -97,3 +97,17 @@ def test_a_soil_surface_that_is_not_watertight_is_one_line_from_the_command_line
     r = mpisph(["flume_3d", "--set", f"geometry={tmp_path}", "--out", tmp_path / "out"], ranks=1, timeout=300)
     assert r.returncode == 2
     assert "the surface 'soil' is not watertight" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+def test_the_barrier_coefficient_from_a_gauge_line():
+    """Depth-averaged speed over the points inside the flow (kernel sum >= 1/2), nan where none is;
+    alpha = F / (rho v^2 h w), nan where the flow has not arrived."""
+    from mpisph.measure import barrier_coefficient, depth_averaged
+
+    speed = np.array([[9.0, 9.0, 9.0], [2.0, 4.0, 9.0], [1.0, 3.0, 5.0]])
+    inside = np.array([[0.0, 0.0, 0.0], [1.0, 0.6, 0.2], [1.0, 1.0, 0.5]])
+    v = depth_averaged(speed, inside)
+    assert np.isnan(v[0]) and v[1] == 3.0 and v[2] == 3.0
+    alpha = barrier_coefficient(np.array([5.0, 1800.0, 3600.0]), 2000.0, v, np.array([np.nan, 0.2, 0.4]), 0.5)
+    assert np.isnan(alpha[0])
+    np.testing.assert_allclose(alpha[1:], [1800.0 / (2000 * 9 * 0.2 * 0.5), 3600.0 / (2000 * 9 * 0.4 * 0.5)])
