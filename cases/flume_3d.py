@@ -74,7 +74,6 @@ def setup(p):
     everything = np.concatenate([soil_x] + [w.x for w in walls])
     lo, hi = everything.min(axis=0) - p.dp, everything.max(axis=0) + p.dp
     b_lo, b_hi = barrier.triangles.reshape(-1, 3).min(axis=0), barrier.triangles.reshape(-1, 3).max(axis=0)
-    width = b_hi[1] - b_lo[1]
     middle = 0.5 * (b_lo[1] + b_hi[1])
     upstream = b_lo[0] - APPROACH
     along = np.arange(0.5 * p.dp, b_lo[0], 2 * p.dp)  # the run-out upstream of the barrier

@@ -7,12 +7,12 @@ blow-up writes a last frame and ends with status 3. SIGTERM or SIGUSR1 (parallel
 a run after the current step with a frame, a line that says how to restart, and status 0.
 """
 
-import argparse
 import os
 import sys
 import tempfile
 import time
 
+from .arguments import Parser, add_set, parse_sets
 from .errors import BlowUp, InputError, Stopped
 
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
@@ -25,16 +25,10 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
          "[--out DIR] [--colour FIELD]")
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise InputError(message)
-
-
 def _parser():
-    p = _Parser(prog="mpisph", usage=USAGE, description="MPI-parallel SPH for fluids and geomaterials.")
+    p = Parser(prog="mpisph", usage=USAGE, description="MPI-parallel SPH for fluids and geomaterials.")
     p.add_argument("case")
-    p.add_argument("--set", dest="overrides", nargs="+", action="extend", default=[],
-                   metavar="NAME=VALUE", help="override a case parameter")
+    add_set(p)
     p.add_argument("--t-end", type=float, help="simulated end time [s]")
     p.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
     p.add_argument("--out", help="output directory (default runs/CASE)")
@@ -44,12 +38,7 @@ def _parser():
 
 
 def _overrides(args):
-    out = {}
-    for item in args.overrides:
-        if "=" not in item:
-            raise InputError(f"--set takes NAME=VALUE, not {item!r}")
-        name, value = item.split("=", 1)
-        out[name.strip()] = value.strip()
+    out = parse_sets(args.overrides)
     if args.t_end is not None:
         out["t_end"] = repr(args.t_end)
     if args.output_interval is not None:

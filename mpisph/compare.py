@@ -21,12 +21,12 @@ that blows up (status 3) is measured at its last frame; a run that fails otherwi
 failed.
 """
 
-import argparse
 import os
 from pathlib import Path
 
 import numpy as np
 
+from .arguments import Parser, add_set, parse_sets
 from .case import build_case, load_case_module, resolve_params
 from .errors import InputError
 from .instability import tensile_instability
@@ -40,16 +40,11 @@ USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=V
          "[--out DIR] [--colour FIELD]")
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise InputError(message)
-
-
 def parse(argv):
-    p = _Parser(prog="mpisph compare", usage=USAGE)
+    p = Parser(prog="mpisph compare", usage=USAGE)
     p.add_argument("case")
     p.add_argument("--stabiliser", required=True, help="stabilisers to compare, separated by commas")
-    p.add_argument("--set", dest="overrides", nargs="+", action="extend", default=[], metavar="NAME=VALUE")
+    add_set(p)
     p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run")
     p.add_argument("--out", help="output directory (default runs/compare_CASE)")
     p.add_argument("--colour", default="speed", help="particle field of the picture (default: speed)")
@@ -60,14 +55,9 @@ def parse(argv):
 
 
 def _overrides(items):
-    out = {}
-    for item in items:
-        if "=" not in item:
-            raise InputError(f"--set takes NAME=VALUE, not {item!r}")
-        name, value = item.split("=", 1)
-        if name.strip() == "stabiliser":
-            raise InputError("the stabilisers are chosen by --stabiliser, not --set")
-        out[name.strip()] = value.strip()
+    out = parse_sets(items)
+    if "stabiliser" in out:
+        raise InputError("the stabilisers are chosen by --stabiliser, not --set")
     return out
 
 

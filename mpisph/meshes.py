@@ -172,10 +172,9 @@ def fill(surface, dp, frame=None):
     corner) inside the watertight ``surface``."""
     check_watertight(surface)
     frame = frame or _lowest_corner(surface)
-    tri = frame.local(surface.triangles.reshape(-1, 3)).reshape(-1, 3, 3)
-    lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
-    u = _lattice(lo, hi, dp, frame, f"the body {surface.name!r}")
-    inside = winding_numbers(u, tri) > 0.5
+    vertices = frame.local(surface.triangles.reshape(-1, 3))
+    u = _lattice(vertices.min(axis=0), vertices.max(axis=0), dp, frame, f"the body {surface.name!r}")
+    inside = winding_numbers(u, vertices.reshape(-1, 3, 3)) > 0.5
     if not inside.any():
         raise InputError(f"spacing dp={dp:g} m leaves no particle inside the body {surface.name!r}")
     return frame.world(u[inside])
@@ -240,7 +239,7 @@ def wall_layers(parts, dp, layers, frames=None):
     normals = np.concatenate([s.normals for s in parts])
     part = np.concatenate([np.full(len(s.triangles), k, np.int64) for k, s in enumerate(parts)])
     depth = layers * dp
-    out = []
+    out, kept_dist = [], []  # per part: (positions, normals), and their distances to every part
     for k, (surface, frame) in enumerate(zip(parts, frames)):
         tri = frame.local(surface.triangles.reshape(-1, 3))
         u = _lattice(tri.min(axis=0) - depth, tri.max(axis=0) + depth, dp, frame, f"the walls of {surface.name!r}")
@@ -254,12 +253,13 @@ def wall_layers(parts, dp, layers, frames=None):
         for j, (earlier, _) in enumerate(out):  # in a joint's band the earlier part's particle stays
             joint = mine & (dist[:, j] < depth + 2.0 * dp)
             if joint.any():
-                close = nearest_on_parts(earlier, triangles, normals, part, len(parts))[0][:, k] < depth + 2.0 * dp
+                close = kept_dist[j][:, k] < depth + 2.0 * dp
                 mine[joint] = _farther_than(x[joint], earlier[close], SEAM * dp)
         if not mine.any():
             raise InputError(f"spacing dp={dp:g} m leaves no wall particle behind {surface.name!r}")
         towards = near[mine, k] - x[mine]
         out.append((x[mine], towards / np.linalg.norm(towards, axis=1)[:, None]))
+        kept_dist.append(dist[mine])
     return out
 
 

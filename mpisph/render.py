@@ -12,7 +12,7 @@ import os
 import numpy as np
 
 from .errors import InputError
-from .io.frames import list_frames, read_frame
+from .io.frames import frame_time, list_frames, read_frame
 from .particles import MOVING
 
 SPEED_LABEL = "speed |v| [m/s]"
@@ -23,7 +23,7 @@ def frames_at(out_dir, times):
     paths = list_frames(os.fspath(out_dir))
     if not paths:
         raise InputError(f"no complete frames (frame_*.vtkhdf) in {out_dir}")
-    stamps = np.array([read_frame(p)["t"] for p in paths])
+    stamps = np.array([frame_time(p) for p in paths])
     return [read_frame(paths[int(np.argmin(np.abs(stamps - t)))], walls=True) for t in times]
 
 

@@ -27,13 +27,13 @@ from mpisph.launch import mpirun_mpisph  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
 
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
+from validate import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 IMG = DOCS / "img"
 RUNS = ROOT / "runs" / "production"
 PAGE = DOCS / "PRODUCTION_3D.md"
-MARK = "<!-- section: {} -->"
 
 
 def run(case, args, ranks, reuse):
@@ -219,16 +219,6 @@ def flume_3d(ranks, reuse):
 RUNNERS = {"cube_failure_3d": cube_failure_3d, "flume_3d": flume_3d}
 
 
-def sections(page):
-    """{name: text} of the sections of an existing page, by their markers."""
-    out = {}
-    if page.exists():
-        for chunk in page.read_text().split("<!-- section: ")[1:]:
-            name = chunk.split(" -->", 1)[0]
-            out[name] = "<!-- section: " + chunk.rstrip("\n") + "\n"
-    return out
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
@@ -237,7 +227,7 @@ def main():
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     RUNS.mkdir(parents=True, exist_ok=True)
-    kept = sections(PAGE)
+    kept = existing_sections(PAGE)
     misses = []
     for name, runner in RUNNERS.items():
         if a.only and name not in a.only:

@@ -611,7 +611,7 @@ def main():
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     page = DOCS / "VALIDATION.md"
-    sections = _existing_sections(page)
+    sections = existing_sections(page)
     misses = []
     for name in a.only or VALIDATIONS:
         extra = {"h_over_dp": a.beam_h_over_dp} if name == "oscillating_beam" else {}
@@ -631,7 +631,7 @@ def main():
         raise SystemExit("outside tolerance:\n  " + "\n  ".join(misses))
 
 
-def _existing_sections(page):
+def existing_sections(page):
     """{name: text} of the sections of an existing page, by their markers."""
     if not page.exists():
         return {}

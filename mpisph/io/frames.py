@@ -282,6 +282,11 @@ def _time_key(path):
         return float(info["time"]), int(info["step"])
 
 
+def frame_time(path):
+    """The simulated time of the complete frame ``path``, read from its attributes alone."""
+    return _time_key(path)[0]
+
+
 def list_frames(out_dir):
     """Complete frames in ``out_dir`` ordered by stored time, then step."""
     pattern = os.path.join(glob.escape(out_dir),
