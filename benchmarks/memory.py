@@ -65,8 +65,8 @@ def particles(case, dp):
     """(all particles, moving particles) of ``case`` at spacing ``dp``."""
     module = cases.load_case_module(case)
     c = cases.build_case(module, cases.resolve_params(module, {"dp": str(dp)}))
-    moving = sum(len(b.x) for b in c.bodies)
-    return moving + sum(len(w.x) for w in c.walls), moving
+    counts = [len(source.everything()[0]) for source in c.sources]
+    return sum(counts), sum(counts[:len(c.bodies)])
 
 
 def main():

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import Body, Case, Fluid, Param, Wall
-from mpisph.geometry import box, box_walls, support_layers
+from mpisph.geometry import block, support_layers, walls_around
 
 PARAMS = {
     "L": Param(1.0, "m", "length and depth of the water column (its height is 2L)", positive=True),
@@ -19,11 +19,10 @@ PARAMS = {
 
 def setup(p):
     H, W = 2 * p.L, 4 * p.L
-    water = box((0.0, 0.0, 0.0), (p.L, p.L, H), p.dp, "the water column")
-    pressure = p.rho0 * p.g * (H - water[:, 2])
+    water = block((0.0, 0.0, 0.0), (p.L, p.L, H), p.dp, "the water column")
     u = np.sqrt(2 * p.g * H)
     layers = support_layers(p.h_factor)
-    wall_x, wall_n = box_walls((0.0, 0.0, 0.0), (W, p.L, 1.5 * H), p.dp, layers, open_sides=("+z",))
+    tank = walls_around((0.0, 0.0, 0.0), (W, p.L, 1.5 * H), p.dp, layers, open_sides=("+z",))
     margin = layers * p.dp
     return Case(
         dim=3,
@@ -31,8 +30,8 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
         scheme="riemann_fluid",
-        bodies=[Body("water", water, pressure=pressure)],
-        walls=[Wall("tank", wall_x, wall_n)],
+        bodies=[Body("water", water, pressure=lambda x: p.rho0 * p.g * (H - x[:, 2]))],
+        walls=[Wall("tank", tank)],
         gravity=(0.0, 0.0, -p.g),
         density_reinit=p.density_reinit,
         u_ref=u,

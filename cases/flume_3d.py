@@ -33,7 +33,8 @@ import numpy as np
 from mpisph.case import Body, Case, DruckerPrager, Front, Param, Wall
 from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
-from mpisph.meshes import Frame, fill, read_surface, wall_layers
+from mpisph.lattice import Frame
+from mpisph.meshes import fill, read_surface, wall_layers
 from mpisph.soil import soil_params
 
 GEOMETRY = Path(__file__).resolve().parent / "flume"
@@ -67,16 +68,18 @@ def setup(p):
     surfaces = [read_surface(geometry / f"{name}.stl") for name in WALLS]
     chute, barrier = surfaces[0], surfaces[-1]
     slope, level = slope_frame(chute), Frame()
-    soil_x = fill(read_surface(geometry / "soil.stl"), p.dp, slope)
+    soil = read_surface(geometry / "soil.stl")
     frames = [slope if name.startswith("chute") else level for name in WALLS]
-    walls = [Wall(name, x, n, slip=name.endswith("sides")) for name, (x, n) in
-             zip(WALLS, wall_layers(surfaces, p.dp, support_layers(p.h_factor), frames))]
-    everything = np.concatenate([soil_x] + [w.x for w in walls])
-    lo, hi = everything.min(axis=0) - p.dp, everything.max(axis=0) + p.dp
+    layers = support_layers(p.h_factor)
+    walls = [Wall(name, points, slip=name.endswith("sides")) for name, points in
+             zip(WALLS, wall_layers(surfaces, p.dp, layers, frames))]
+    corners = np.concatenate([s.triangles.reshape(-1, 3) for s in [soil] + surfaces])
+    lo, hi = corners.min(axis=0) - (layers + 1) * p.dp, corners.max(axis=0) + (layers + 1) * p.dp
+    soil_lo, soil_hi = soil.triangles.reshape(-1, 3).min(axis=0), soil.triangles.reshape(-1, 3).max(axis=0)
     b_lo, b_hi = barrier.triangles.reshape(-1, 3).min(axis=0), barrier.triangles.reshape(-1, 3).max(axis=0)
     middle = 0.5 * (b_lo[1] + b_hi[1])
     upstream = b_lo[0] - APPROACH
-    along = np.arange(0.5 * p.dp, b_lo[0], 2 * p.dp)  # the run-out upstream of the barrier
+    along = np.arange(0.5 * p.dp, b_lo[0], max(2 * p.dp, b_lo[0] / 100))  # the run-out upstream of the barrier
     stations = np.column_stack([along, np.full_like(along, middle)])
     return Case(
         dim=3,
@@ -84,11 +87,11 @@ def setup(p):
         dp=p.dp,
         material=DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi),
         scheme="riemann_granular",
-        bodies=[Body("soil", soil_x)],
+        bodies=[Body("soil", fill(soil, p.dp, slope))],
         walls=walls,
         gravity=(0.0, 0.0, -p.g),
         stabilisers=p.stabiliser,
-        u_ref=float(np.sqrt(2.0 * p.g * (soil_x[:, 2].max() - soil_x[:, 2].min()))),
+        u_ref=float(np.sqrt(2.0 * p.g * (soil_hi[2] - soil_lo[2]))),
         front=Front(origin=(lo[0], 0.0, 0.0), axes=(0,)),
         wall_forces={"barrier": (b_lo[0], middle, b_lo[2])},
         gauges=[SurfaceGauge("depth", stations),

@@ -11,6 +11,7 @@ import os
 import sys
 import tempfile
 import time
+import traceback
 
 from .arguments import Parser, add_set, parse_sets
 from .errors import BlowUp, InputError, Stopped
@@ -142,7 +143,7 @@ def run(args, comm):
     parts = make_parts(case, values)
     case.validate(parts.kernel.support)
     if frame is None:
-        check_fits(comm, sum(len(b.x) for b in case.bodies) + sum(len(w.x) for w in case.walls))
+        check_fits(comm, case.sources)
         particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
     else:
         particles, t, step = particles_from_frame(comm, frame, parts), frame["t"], frame["step"]
@@ -220,6 +221,12 @@ def main(argv=None):
         if comm.rank == 0:
             print(f"mpisph: {e}", file=sys.stderr, flush=True)
         return 3
+    except Exception:
+        if comm.size == 1:
+            raise
+        traceback.print_exc()  # a fault on one rank: end every rank rather than leave them waiting
+        sys.stderr.flush()
+        comm.Abort(1)
 
 
 if __name__ == "__main__":

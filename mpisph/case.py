@@ -16,6 +16,7 @@ import numpy as np
 
 from .errors import InputError
 from .kernels import KERNELS
+from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .stabilisers import stabiliser_names
 
@@ -89,26 +90,37 @@ SOLID_PARAMS = {
 
 @dataclass
 class Body:
-    """Moving particles of one material with their initial state."""
+    """Moving particles of one material with their initial state.
+
+    ``x`` is an array (n, dim) or a source (sources.py) that each rank reads only its slab of.
+    Each of the initial fields is None (zero), an array over the rows of an array ``x``, or a
+    function of positions (m, dim) -> values (m, ...), which a source's body needs."""
 
     name: str
-    x: np.ndarray
-    velocity: np.ndarray | None = None  # (n, dim)
-    pressure: np.ndarray | None = None  # (n,)
-    stress: np.ndarray | None = None  # (n, 3, 3) initial Cauchy stress, solids only
-    clamped: np.ndarray | None = None  # (n,) bool: held in place (solids only)
+    x: object
+    velocity: object = None  # (n, dim)
+    pressure: object = None  # (n,)
+    stress: object = None  # (n, 3, 3) initial Cauchy stress, solids only
+    clamped: object = None  # (n,) bool: held in place (solids only)
 
 
 @dataclass
 class Wall:
-    """Fixed dummy particles: positions, inward normals, wall velocity, slip condition."""
+    """Fixed dummy particles: positions, inward normals, wall velocity, slip condition.
+
+    ``x`` is an array (with ``normal``) or a source (sources.py) that gives the normals itself;
+    ``velocity`` is None (at rest), one vector, or an array over the rows of an array ``x``."""
 
     name: str
-    x: np.ndarray
-    normal: np.ndarray
-    velocity: np.ndarray | None = None  # (n, dim); zero if None
+    x: object
+    normal: np.ndarray | None = None
+    velocity: np.ndarray | None = None  # (n, dim) or (dim,); zero if None
     slip: bool = False
-    distance: np.ndarray | None = None  # (n,) distance behind the wall surface (Morris walls, 004_ Eq. 34)
+    distance: object = None  # (n,) or a function of positions: depth behind the wall surface (Morris, 004_ Eq. 34)
+
+    @property
+    def points(self):
+        return as_points(self.x, self.normal)
 
 
 @dataclass(frozen=True)
@@ -147,6 +159,11 @@ class Case:
     gauges: list = field(default_factory=list)  # gauges.Gauge and gauges.SurfaceGauge, a CSV file each
     wall_forces: dict = field(default_factory=dict)  # wall name -> point of its moment; diagnostics (wall_forces.py)
 
+    @property
+    def sources(self):
+        """The particle sources of the bodies, then the walls (sources.py), in id order."""
+        return [as_points(b.x) for b in self.bodies] + [w.points for w in self.walls]
+
     def __post_init__(self):
         if isinstance(self.stabilisers, str):
             self.stabilisers = stabiliser_names(self.stabilisers)
@@ -159,32 +176,34 @@ class Case:
 
     def _wall_gids(self):
         """{wall name: (first, last + 1) global id} of the walls whose forces are recorded (global ids
-        run over the bodies, then the walls, in order)."""
+        run over the sources of the bodies, then the walls, in order)."""
         names = [w.name for w in self.walls]
         unknown = [name for name in self.wall_forces if name not in names]
         if unknown:
             raise InputError(f"wall_forces names {', '.join(map(repr, unknown))}: the walls are "
                              f"{', '.join(map(repr, names)) or 'none'}")
-        first = sum(len(b.x) for b in self.bodies)
+        first = sum(as_points(b.x).size for b in self.bodies)
         out = {}
         for w in self.walls:
+            size = w.points.size
             if w.name in self.wall_forces:
-                out[w.name] = (first, first + len(w.x))
-            first += len(w.x)
+                out[w.name] = (first, first + size)
+            first += size
         return out
 
     def _initial_position(self, gid):
         """Initial position of the moving or clamped particle with global id ``gid``."""
         for b in self.bodies:
-            if gid < len(b.x):
-                return np.asarray(b.x[gid], float)
-            gid -= len(b.x)
+            points = as_points(b.x)
+            if gid < points.size:
+                return np.asarray(points.position(gid), float)
+            gid -= points.size
         raise KeyError(gid)
 
     def forget_particles(self):
-        """Drop the particle arrays of the bodies and walls once the particles are made from
-        them (in 3D they would stay resident for the whole run, about 80 bytes per particle);
-        domain, material and probe origins stay."""
+        """Drop the bodies and walls (their arrays, or sources with their caches) once the
+        particles are made from them (in 3D arrays would stay resident for the whole run, about
+        80 bytes per particle); domain, material and probe origins stay."""
         self.bodies, self.walls = [], []
 
     def validate(self, support):
@@ -196,14 +215,6 @@ class Case:
         lo, hi = self.domain
         if np.any(hi <= lo):
             raise InputError("the domain has no volume: every upper corner must exceed the lower one")
-        for b in list(self.bodies) + list(self.walls):
-            if len(b.x) == 0:
-                raise InputError(f"body {b.name!r} has no particles at dp={self.dp:g} m")
-            outside = np.any((b.x < lo) | (b.x >= hi), axis=1)
-            if outside.any() and not isinstance(b, Wall):
-                k = int(np.argmax(outside))
-                raise InputError(f"body {b.name!r} lies outside the domain "
-                                 f"(particle at {np.round(b.x[k], 6).tolist()}, domain {lo.tolist()} to {hi.tolist()})")
         for a in range(self.dim):
             if self.periodic[a] and hi[a] - lo[a] < 2 * support:
                 raise InputError(f"periodic axis {'xyz'[a]} is shorter than twice the kernel support")

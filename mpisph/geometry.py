@@ -2,7 +2,9 @@
 
 Particles sit at the centres of lattice cells of spacing dp (lo + (i + 1/2)
 dp along each axis), so every particle's volume is exactly dp^d; a box whose
-side is not a multiple of dp holds floor(L/dp) particles along it.
+side is not a multiple of dp holds floor(L/dp) particles along it. ``block`` and
+``walls_around`` are sources (sources.py) that each rank reads only its slab of;
+``box`` and ``box_walls`` are their arrays, for small cases.
 """
 
 import math
@@ -11,7 +13,9 @@ import numpy as np
 
 from .errors import InputError
 from .kernels import SUPPORT_FACTOR
+from .lattice import Frame, Lattice
 from .memory import BUILD_BYTES_PER_PARTICLE, available_bytes, too_many
+from .sources import LatticePoints
 
 
 def support_layers(h_factor):
@@ -51,12 +55,19 @@ def _axis_points(lo, hi, dp, what):
     return lo + (np.arange(n) + 0.5) * dp
 
 
+def block(lo, hi, dp, what="the box"):
+    """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source."""
+    counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
+    if min(counts) < 1:
+        a = int(np.argmin(counts))
+        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi[a] - lo[a]:g} m across)")
+    return LatticePoints(Lattice((0,) * len(lo), tuple(counts), dp, Frame(origin=tuple(map(float, lo)))))
+
+
 def box(lo, hi, dp, what="the box"):
     """Cell-centred lattice filling the box [lo, hi] (2D or 3D)."""
     _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)], dp, what)
-    axes = [_axis_points(a, b, dp, what) for a, b in zip(lo, hi)]
-    grids = np.meshgrid(*axes, indexing="ij")
-    return np.stack([g.ravel() for g in grids], axis=1)
+    return block(lo, hi, dp, what).everything()[0]
 
 
 def disk(centre, radius, dp, what="the disk"):
@@ -103,16 +114,15 @@ def bed(lo, hi, dp, layers):
     return pts, normals, depth
 
 
-def box_walls(lo, hi, dp, layers, open_sides=()):
-    """Dummy wall particles in ``layers`` lattice layers around the box [lo, hi].
+def walls_around(lo, hi, dp, layers, open_sides=()):
+    """Dummy wall particles in ``layers`` lattice layers around the box [lo, hi], as a source.
 
     ``open_sides`` names sides left without wall, e.g. ``("+y",)`` for an
-    open top. Returns (positions, inward unit normals); the normal of a wall
-    particle points from it to the nearest point of the box.
+    open top. The normal of a wall particle is the unit vector from it to the
+    nearest point of the box.
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
-    dim = len(lo)
     ext_lo = lo - layers * dp
     ext_hi = hi + layers * dp
     for side in open_sides:
@@ -121,14 +131,23 @@ def box_walls(lo, hi, dp, layers, open_sides=()):
             ext_hi[a] = hi[a]
         else:
             ext_lo[a] = lo[a]
-    _within_memory(np.ceil((ext_hi - ext_lo) / dp), dp, "the walls")
-    axes = [lo[a] + (np.arange(int(round((ext_lo[a] - lo[a]) / dp)),
-                               int(round((ext_hi[a] - lo[a]) / dp))) + 0.5) * dp
-            for a in range(dim)]
-    grids = np.meshgrid(*axes, indexing="ij")
-    pts = np.stack([g.ravel() for g in grids], axis=1)
-    inside = np.all((pts > lo) & (pts < hi), axis=1)
-    pts = pts[~inside]
-    towards = np.clip(pts, lo, hi) - pts
-    normals = towards / np.linalg.norm(towards, axis=1)[:, None]
-    return pts, normals
+    first = tuple(int(round(v)) for v in (ext_lo - lo) / dp)
+    last = tuple(int(round(v)) for v in (ext_hi - lo) / dp)
+    lattice = Lattice(first, last, dp, Frame(origin=tuple(lo)))
+
+    def outside(x):
+        return ~np.all((x > lo) & (x < hi), axis=1)
+
+    def towards_box(x):
+        towards = np.clip(x, lo, hi) - x
+        return towards / np.linalg.norm(towards, axis=1)[:, None]
+
+    inner = math.prod(lattice_layers(b - a, dp) for a, b in zip(lo, hi))
+    return LatticePoints(lattice, keep=outside, normal=towards_box, estimate=lattice.size - inner)
+
+
+def box_walls(lo, hi, dp, layers, open_sides=()):
+    """The arrays (positions, inward unit normals) of ``walls_around``."""
+    walls = walls_around(lo, hi, dp, layers, open_sides)
+    _within_memory([walls.size], dp, "the walls")
+    return walls.everything()

@@ -7,11 +7,13 @@ import resource
 from mpi4py import MPI
 
 from .errors import InputError
+from .sources import ArrayPoints
 
 
-# Every rank builds the whole case (positions, wall normals and depths: about 80 bytes per particle
-# in 3D) and then runs its share; the run's peak per owned particle was measured with
-# per_rank_line: 1596 bytes in the 3D dam break at 140k particles on 2 ranks.
+# A case built from arrays has them on every rank (positions, wall normals and depths: about 80
+# bytes per particle in 3D); sources (sources.py) are built a slab per rank. The run's peak per
+# owned particle was measured with per_rank_line: 1596 bytes in the 3D dam break at 140k particles
+# on 2 ranks.
 BUILD_BYTES_PER_PARTICLE = 100
 RUN_BYTES_PER_PARTICLE = 1600
 
@@ -20,22 +22,25 @@ def too_many(count, what, available, node=""):
     """The one-line refusal of ``count`` particles (``what`` says where they come from, ``node`` what
     the ranks of this node would need together)."""
     return (f"{what} {count:.3g} particles: about {count * RUN_BYTES_PER_PARTICLE / 1e9:.3g} GB to run "
-            f"({RUN_BYTES_PER_PARTICLE} bytes per particle) and {count * BUILD_BYTES_PER_PARTICLE / 1e9:.3g} GB "
-            f"per rank to build{node}, where this machine has {available / 1e9:.3g} GB available; choose a "
-            f"larger dp")
+            f"({RUN_BYTES_PER_PARTICLE} bytes per particle){node}, where this machine has "
+            f"{available / 1e9:.3g} GB available; choose a larger dp")
 
 
-def check_fits(comm, count):
-    """Refuse a case of ``count`` particles (walls included) that the ranks on this node could not
-    build and run within its available memory (collective)."""
+def check_fits(comm, sources):
+    """Refuse a case whose particle ``sources`` (sources.py, walls included) the ranks on this node
+    could not build and run within its available memory (collective), from the sources' estimates
+    before any particle is generated."""
     node = comm.Split_type(MPI.COMM_TYPE_SHARED)
     ranks_here = node.size
     node.Free()
-    need = ranks_here * count * (BUILD_BYTES_PER_PARTICLE + RUN_BYTES_PER_PARTICLE / comm.size)
+    count = sum(s.estimate for s in sources)
+    held = sum(s.size for s in sources if isinstance(s, ArrayPoints))  # on every rank
+    need = ranks_here * (held * BUILD_BYTES_PER_PARTICLE + count * RUN_BYTES_PER_PARTICLE / comm.size)
     available = available_bytes()
     if available is not None and need > available:
-        raise InputError(too_many(count, "the case has", available,
-                                  f" ({need / 1e9:.3g} GB on this node's {ranks_here} ranks)"))
+        raise InputError(too_many(count, "the case has about", available,
+                                  f" and {need / 1e9:.3g} GB on this node's {ranks_here} "
+                                  f"rank{'s' if ranks_here > 1 else ''}"))
 
 
 def resident_bytes():

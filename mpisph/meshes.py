@@ -32,33 +32,12 @@ import numpy as np
 from numba import njit
 
 from .errors import InputError
-from .geometry import _within_memory
+from .lattice import Frame, Lattice
+from .sources import LatticePoints, Points
 
 # meshio cell types whose cells are planar polygons, split into triangle fans
 _POLYGONS = ("triangle", "quad", "polygon")
 SEAM = 0.75  # times dp: the closest two wall particles of different parts may come in a joint's band
-
-
-@dataclass(frozen=True)
-class Frame:
-    """A lattice frame: ``origin`` and ``axes`` (3 x 3, the columns are the lattice axes, orthonormal)."""
-
-    origin: tuple = (0.0, 0.0, 0.0)
-    axes: tuple = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
-
-    def matrix(self):
-        r = np.asarray(self.axes, float)
-        if r.shape != (3, 3) or not np.allclose(r.T @ r, np.eye(3), atol=1e-12):
-            raise InputError("a lattice frame needs three orthonormal axes")
-        return r
-
-    def local(self, x):
-        """World points -> coordinates along the frame's axes."""
-        return (np.asarray(x, float) - np.asarray(self.origin, float)) @ self.matrix()
-
-    def world(self, u):
-        """Frame coordinates -> world points."""
-        return np.asarray(self.origin, float) + u @ self.matrix().T
 
 
 @dataclass
@@ -152,32 +131,30 @@ def winding_numbers(points, triangles):
     return out
 
 
-def _lattice(lo, hi, dp, frame, what):
-    """Cell-centred lattice points of ``frame`` (in frame coordinates) covering [lo, hi] there."""
-    first = np.floor(lo / dp + 1e-9).astype(np.int64)
-    last = np.ceil(hi / dp - 1e-9).astype(np.int64)
-    _within_memory(last - first, dp, what)
-    axes = [(np.arange(f, l) + 0.5) * dp for f, l in zip(first, last)]
-    grids = np.meshgrid(*axes, indexing="ij")
-    return np.stack([g.ravel() for g in grids], axis=1)
-
-
 def _lowest_corner(surface):
     """The default frame of a surface: the world axes, origin at the lowest corner of its box."""
     return Frame(origin=tuple(surface.triangles.reshape(-1, 3).min(axis=0)))
 
 
+def volume(surface):
+    """The volume a closed, outward-oriented surface encloses (divergence theorem)."""
+    t = surface.triangles
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
 def fill(surface, dp, frame=None):
-    """Lattice points of ``frame`` (spacing dp; default: the world axes from the surface's lowest
-    corner) inside the watertight ``surface``."""
+    """The lattice points of ``frame`` (spacing dp; default: the world axes from the surface's
+    lowest corner) inside the watertight ``surface``, as a source (sources.py)."""
     check_watertight(surface)
     frame = frame or _lowest_corner(surface)
     vertices = frame.local(surface.triangles.reshape(-1, 3))
-    u = _lattice(vertices.min(axis=0), vertices.max(axis=0), dp, frame, f"the body {surface.name!r}")
-    inside = winding_numbers(u, vertices.reshape(-1, 3, 3)) > 0.5
-    if not inside.any():
-        raise InputError(f"spacing dp={dp:g} m leaves no particle inside the body {surface.name!r}")
-    return frame.world(u[inside])
+    lattice = Lattice.covering(vertices.min(axis=0), vertices.max(axis=0), dp, frame)
+    triangles = surface.triangles
+
+    def inside(x):
+        return winding_numbers(x, triangles) > 0.5
+
+    return LatticePoints(lattice, keep=inside, estimate=volume(surface) / dp**3)
 
 
 @njit(cache=True)
@@ -233,46 +210,123 @@ def wall_layers(parts, dp, layers, frames=None):
     """Dummy wall particles, ``layers`` lattice layers deep, behind each surface of ``parts``.
 
     ``frames`` gives each part its lattice (default: the world axes with the origin at the part's
-    lowest corner). Returns a list over the parts of (positions, inward unit normals)."""
-    frames = frames or [_lowest_corner(s) for s in parts]
-    triangles = np.concatenate([s.triangles for s in parts])
-    normals = np.concatenate([s.normals for s in parts])
-    part = np.concatenate([np.full(len(s.triangles), k, np.int64) for k, s in enumerate(parts)])
-    depth = layers * dp
-    out, kept_dist = [], []  # per part: (positions, normals), and their distances to every part
-    for k, (surface, frame) in enumerate(zip(parts, frames)):
-        tri = frame.local(surface.triangles.reshape(-1, 3))
-        u = _lattice(tri.min(axis=0) - depth, tri.max(axis=0) + depth, dp, frame, f"the walls of {surface.name!r}")
-        x = frame.world(u)
-        dist, near, behind = nearest_on_parts(x, triangles, normals, part, len(parts))
-        claims = behind & (dist < depth)
-        mine = claims[:, k].copy()
-        for j in range(len(parts)):
-            if j != k:  # another part nearer by more than dp takes the point
-                mine &= ~(claims[:, j] & (dist[:, j] < dist[:, k] - dp))
-        for j, (earlier, _) in enumerate(out):  # in a joint's band the earlier part's particle stays
-            joint = mine & (dist[:, j] < depth + 2.0 * dp)
-            if joint.any():
-                close = kept_dist[j][:, k] < depth + 2.0 * dp
-                mine[joint] = _farther_than(x[joint], earlier[close], SEAM * dp)
-        if not mine.any():
-            raise InputError(f"spacing dp={dp:g} m leaves no wall particle behind {surface.name!r}")
-        towards = near[mine, k] - x[mine]
-        out.append((x[mine], towards / np.linalg.norm(towards, axis=1)[:, None]))
-        kept_dist.append(dist[mine])
-    return out
+    lowest corner). Returns a source (sources.py) per part, whose normals point inwards."""
+    walls = _WallLayers(parts, dp, layers, frames or [_lowest_corner(s) for s in parts])
+    return [_PartLayers(walls, k) for k in range(len(parts))]
+
+
+class _WallLayers:
+    """The wall layers of all parts, a slab at a time. A part's particle near a joint depends on
+    the particles an earlier part keeps within SEAM dp of it, so a slab is computed with a margin
+    of dp per part and then cut back. The lattice points a part can claim lie within ``layers`` dp
+    of one of its triangles: only the boxes about its triangles are searched."""
+
+    def __init__(self, parts, dp, layers, frames):
+        self.parts, self.dp, self.frames = parts, dp, frames
+        self.depth = layers * dp
+        self.triangles = np.concatenate([s.triangles for s in parts])
+        self.normals = np.concatenate([s.normals for s in parts])
+        self.part = np.concatenate([np.full(len(s.triangles), k, np.int64) for k, s in enumerate(parts)])
+        self.lattices, self.boxes = [], []  # per part: its lattice, and the sub-lattice about each triangle
+        for surface, frame in zip(parts, frames):
+            tri = frame.local(surface.triangles.reshape(-1, 3)).reshape(-1, 3, 3)
+            lattice = Lattice.covering(tri.reshape(-1, 3).min(axis=0) - self.depth,
+                                       tri.reshape(-1, 3).max(axis=0) + self.depth, dp, frame)
+            self.lattices.append(lattice)
+            self.boxes.append([Lattice.covering(t.min(axis=0) - self.depth, t.max(axis=0) + self.depth, dp, frame)
+                               for t in tri])
+        self._last = None  # (window, result): the parts ask for the same slab one after the other
+
+    def _candidates(self, k, axis, lo, hi):
+        """Indices (in part k's lattice, ascending) of the points in the boxes about its triangles
+        whose coordinate along ``axis`` lies in [lo, hi)."""
+        lattice, found = self.lattices[k], []
+        for box in self.boxes[k]:
+            first = np.maximum(box.first, lattice.first)
+            last = np.minimum(box.last, lattice.last)
+            if np.any(last <= first):
+                continue
+            sub = Lattice(tuple(first), tuple(last), self.dp, lattice.frame)
+            tuples = np.unravel_index(sub.window(axis, lo, hi), sub.shape)
+            found.append(np.ravel_multi_index([t + f - g for t, f, g in zip(tuples, first, lattice.first)],
+                                              lattice.shape))
+        return np.unique(np.concatenate(found)) if found else np.zeros(0, np.int64)
+
+    def window(self, axis, lo, hi):
+        """Per part: (indices, positions, inward normals) of its particles in [lo, hi) along ``axis``."""
+        if self._last is not None and self._last[0] == (axis, lo, hi):
+            return self._last[1]
+        dp, depth, n_parts = self.dp, self.depth, len(self.parts)
+        margin = n_parts * dp
+        out, kept_dist = [], []  # per part: (indices, positions, normals), and their distances to every part
+        for k in range(n_parts):
+            index = self._candidates(k, axis, lo - margin, hi + margin)
+            x = self.lattices[k].points(index)
+            dist, near, behind = nearest_on_parts(x, self.triangles, self.normals, self.part, n_parts)
+            claims = behind & (dist < depth)
+            mine = claims[:, k].copy()
+            for j in range(n_parts):
+                if j != k:  # another part nearer by more than dp takes the point
+                    mine &= ~(claims[:, j] & (dist[:, j] < dist[:, k] - dp))
+            for j, (_, earlier, _) in enumerate(out):  # in a joint's band the earlier part's particle stays
+                joint = mine & (dist[:, j] < depth + 2.0 * dp)
+                if joint.any():
+                    close = kept_dist[j][:, k] < depth + 2.0 * dp
+                    mine[joint] = _farther_than(x[joint], earlier[close], SEAM * dp)
+            towards = near[mine, k] - x[mine]
+            out.append((index[mine], x[mine], towards / np.linalg.norm(towards, axis=1)[:, None]))
+            kept_dist.append(dist[mine])
+        result = []
+        for index, x, normal in out:
+            inside = (x[:, axis] >= lo) & (x[:, axis] < hi)
+            result.append((index[inside], x[inside], normal[inside]))
+        self._last = ((axis, lo, hi), result)
+        return result
+
+
+class _PartLayers(Points):
+    """The wall layers of one part of a ``_WallLayers``."""
+
+    def __init__(self, walls, k):
+        self.walls, self.k = walls, k
+        self.size = walls.lattices[k].size
+        self.estimate = min(self.size, sum(box.size for box in walls.boxes[k]))  # boxes overlap: a bound
+
+    def window(self, axis, lo, hi):
+        return self.walls.window(axis, lo, hi)[self.k]
+
+    def position(self, index):
+        return self.walls.lattices[self.k].points(np.array([index]))[0]
+
+
+def _farther_than(points, others, radius):
+    """Whether each point lies farther than ``radius`` from every one of ``others``: ``others``
+    are sorted into cells ``radius`` wide and each point looks in the 27 cells about its own."""
+    if len(others) == 0:
+        return np.ones(len(points), np.bool_)
+    lo = others.min(axis=0)
+    cells = np.floor((others - lo) / radius).astype(np.int64) + 1  # a ring of empty cells about them
+    dims = cells.max(axis=0) + 2
+    keys = (cells[:, 0] * dims[1] + cells[:, 1]) * dims[2] + cells[:, 2]
+    order = np.argsort(keys, kind="stable")
+    return _farther_than_sorted(points, others[order], keys[order], lo, radius, dims)
 
 
 @njit(cache=True)
-def _farther_than(points, others, radius):
-    """Whether each point lies farther than ``radius`` from every one of ``others`` (by pairs: the
-    callers pass the few particles near a joint of two parts)."""
+def _farther_than_sorted(points, others, keys, lo, radius, dims):
     out = np.ones(len(points), np.bool_)
     r2 = radius * radius
     for i in range(len(points)):
-        for j in range(len(others)):
-            d = points[i] - others[j]
-            if _dot(d, d) < r2:
-                out[i] = False
-                break
+        c = np.floor((points[i] - lo) / radius).astype(np.int64) + 1
+        if np.any(c < 0) or np.any(c > dims - 1):
+            continue  # beyond the ring of empty cells: farther than radius from all of them
+        for a in range(c[0] - 1, c[0] + 2):
+            for b in range(c[1] - 1, c[1] + 2):
+                key = (a * dims[1] + b) * dims[2] + c[2] - 1
+                k = np.searchsorted(keys, key)
+                while out[i] and k < len(keys) and keys[k] <= key + 2:
+                    d = points[i] - others[k]
+                    if _dot(d, d) < r2:
+                        out[i] = False
+                    k += 1
     return out

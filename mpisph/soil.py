@@ -10,7 +10,7 @@ a cube standing in the middle of a square floor with a low rim.
 import numpy as np
 
 from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall
-from .geometry import box, box_walls, support_layers
+from .geometry import block, support_layers, walls_around
 from .physics.drucker_prager import geostatic_stress
 
 
@@ -46,11 +46,9 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
     dummy walls; the domain reaches one block height above the block's top."""
     dim = len(lo)
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
-    block = box(lo, hi, p.dp, f"the {name}")
-    height = hi[-1] - lo[-1]
+    height, top = hi[-1] - lo[-1], hi[-1]
     layers = support_layers(p.h_factor)
     up = "+" + "xyz"[dim - 1]
-    wall_x, wall_n = box_walls(tank_lo, tank_hi, p.dp, layers, open_sides=(up,))
     margin = layers * p.dp
     domain_lo = tuple(a - margin for a in tank_lo)
     domain_hi = tuple(a + margin for a in tank_hi[:-1]) + (max(tank_hi[-1], hi[-1] + height),)
@@ -61,8 +59,9 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
         dp=p.dp,
         material=soil,
         scheme="riemann_granular",
-        bodies=[Body(name, block, stress=geostatic_stress(block, hi[-1], soil, p.g))],
-        walls=[Wall("tank", wall_x, wall_n)],
+        bodies=[Body(name, block(lo, hi, p.dp, f"the {name}"),
+                     stress=lambda x: geostatic_stress(x, top, soil, p.g))],
+        walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)))],
         gravity=gravity,
         stabilisers=p.stabiliser,
         u_ref=float(np.sqrt(2.0 * p.g * height)),

@@ -46,7 +46,9 @@ def existing_output(tmp_path):
     (["elliptical_drop", "--set", "dp"], ["NAME=VALUE"]),
     (["dam_break_2d", "--set", "dp=1e-12"], ["fills the water column with 2e+24 particles", "GB to run",
                                              "GB available"]),
-    (["cube_failure_3d", "--set", "dp=1e-12"], ["fills the soil cube with 8e+36 particles", "GB available"]),
+    (["flume_3d", "--set", "dp=1e-12"], ["the case has about", "particles", "GB to run", "GB available"]),
+    (["cube_failure_3d", "--set", "dp=1e-12"], ["the case has about 8e+36 particles", "GB to run",
+                                                 "GB available"]),
 ])
 def test_bad_parameters(args, fragments, existing_output):
     out, marker = existing_output

@@ -40,7 +40,7 @@ def test_the_shipped_stl_files_are_the_scripts(tmp_path):
 def test_the_soil_sits_on_the_chute_lattice():
     script = make_flume_stl()
     case = flume(dp=0.1)
-    soil = case.bodies[0].x
+    soil, _ = case.bodies[0].x.everything()
     along, across, up = script.slope_axes()
     u = (soil - script.chute_top()) @ np.column_stack([along, across, up])
     dp = 0.1
@@ -50,7 +50,7 @@ def test_the_soil_sits_on_the_chute_lattice():
         k = u[:, a] / dp - 0.5
         assert np.allclose(k, np.round(k), atol=1e-9) and k.min() > -1e-9
     chute = next(w for w in case.walls if w.name == "chute")
-    w = (chute.x - script.chute_top()) @ np.column_stack([along, across, up])
+    w = (chute.points.everything()[0] - script.chute_top()) @ np.column_stack([along, across, up])
     under = (w[:, 0] > 0) & (w[:, 0] < script.CHUTE_LENGTH) & (w[:, 1] > 0) & (w[:, 1] < script.WIDTH)
     depth = -w[under, 2] / dp - 0.5  # the floor's layers continue the soil's lattice below the floor
     assert np.allclose(depth, np.round(depth), atol=1e-9) and set(np.round(depth)) == {0.0, 1.0, 2.0}
@@ -60,7 +60,7 @@ def test_the_soil_sits_on_the_chute_lattice():
 def test_no_two_particles_of_the_flume_crowd():
     """Soil and every wall at dp = 0.1: no pair nearer than dp / 2 (the joints of the parts)."""
     case = flume(dp=0.1)
-    x = np.concatenate([case.bodies[0].x] + [w.x for w in case.walls])
+    x = np.concatenate([source.everything()[0] for source in case.sources])
     start, nbr = neighbour_lists(x, np.arange(len(x)), np.zeros(len(x), np.int8), len(x), 0.05, x.min(axis=0) - 0.1)
     assert len(nbr) == 0
 

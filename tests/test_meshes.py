@@ -7,7 +7,8 @@ import pytest
 
 from mpisph.errors import InputError
 from mpisph.geometry import box, box_walls
-from mpisph.meshes import Frame, Surface, fill, read_surface, wall_layers
+from mpisph.lattice import Frame
+from mpisph.meshes import Surface, fill, read_surface, wall_layers
 
 # The six faces of the unit cube as quads, each listed counter-clockwise seen from outside.
 CUBE_POINTS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
@@ -30,7 +31,7 @@ def write(path, triangles):
 
 def test_a_watertight_stl_box_fills_as_the_lattice_box(tmp_path):
     lo, hi, dp = (0.2, -0.1, 0.0), (0.6, 0.2, 0.25), 0.05
-    x = fill(read_surface(write(tmp_path / "box.stl", cube_triangles(lo, hi))), dp)
+    x, _ = fill(read_surface(write(tmp_path / "box.stl", cube_triangles(lo, hi))), dp).everything()
     expected = box(lo, hi, dp)
     assert len(x) == len(expected) == 8 * 6 * 5
     assert np.allclose(np.sort(x, axis=0), np.sort(expected, axis=0))
@@ -52,7 +53,7 @@ def test_an_obj_sphere_fills_its_volume(tmp_path):
              for a in range(n_theta - 2) for b in range(n_phi)]
     meshio.write(tmp_path / "ball.obj", meshio.Mesh(points, [("triangle", np.array(caps)), ("quad", np.array(quads))]))
     dp = 0.05
-    x = fill(read_surface(tmp_path / "ball.obj"), dp, Frame(origin=(-0.5, -0.5, -0.5)))
+    x, _ = fill(read_surface(tmp_path / "ball.obj"), dp, Frame(origin=(-0.5, -0.5, -0.5))).everything()
     radius = np.linalg.norm(x, axis=1)
     assert radius.max() < r
     lattice = box((-0.5,) * 3, (0.5,) * 3, dp)
@@ -65,7 +66,7 @@ def test_an_obj_sphere_fills_its_volume(tmp_path):
 def test_a_vtu_surface_reads_like_the_stl(tmp_path):
     tri = cube_triangles((0, 0, 0), (0.3, 0.3, 0.3))
     write(tmp_path / "box.vtu", tri)
-    assert len(fill(read_surface(tmp_path / "box.vtu"), 0.05)) == 216
+    assert len(fill(read_surface(tmp_path / "box.vtu"), 0.05).everything()[0]) == 216
 
 
 def test_a_box_with_a_missing_face_is_refused_in_one_line(tmp_path):
@@ -89,6 +90,11 @@ def test_an_unreadable_mesh_is_a_one_line_error(tmp_path):
         read_surface(tmp_path / "junk.stl")
 
 
+def layers_of(parts, dp, layers, frames=None):
+    """wall_layers' particles as arrays: (positions, normals) per part."""
+    return [points.everything() for points in wall_layers(parts, dp, layers, frames)]
+
+
 def open_box(lo, hi):
     """The floor and four sides of the box [lo, hi], normals pointing into it (the material side)."""
     return cube_triangles(lo, hi, drop=(1,))[:, ::-1]
@@ -98,7 +104,7 @@ def test_wall_layers_behind_an_open_box_are_box_walls_with_rounded_corners():
     """Below the rim, the layers are box_walls' within layers dp of the box (the corners rounded);
     above it, behind the sides' open edges, they are the rounded caps of those edges."""
     lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.4, 0.3, 0.2), 0.02, 3
-    [(x, n)] = wall_layers([Surface("tank", open_box(lo, hi))], dp, layers)
+    [(x, n)] = layers_of([Surface("tank", open_box(lo, hi))], dp, layers)
     cap = x[:, 2] > hi[2]
     rim = np.clip(x[cap], lo, hi) - x[cap]
     assert np.all(np.linalg.norm(rim, axis=1) < layers * dp) and np.all(np.abs(x[cap, 2] - hi[2]) < layers * dp)
@@ -118,9 +124,9 @@ def test_parts_share_the_layers_behind_their_joints_without_overlap():
     lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.4, 0.3, 0.2), 0.02, 3
     tri = open_box(lo, hi)
     floor = np.abs(Surface("", tri).normals[:, 2] - 1.0) < 1e-12
-    [(whole, _)] = wall_layers([Surface("tank", tri)], dp, layers)
+    [(whole, _)] = layers_of([Surface("tank", tri)], dp, layers)
     frame = Frame(origin=lo)
-    parts = wall_layers([Surface("floor", tri[floor]), Surface("sides", tri[~floor])], dp, layers, [frame, frame])
+    parts = layers_of([Surface("floor", tri[floor]), Surface("sides", tri[~floor])], dp, layers, [frame, frame])
     joined = np.concatenate([x for x, _ in parts])
     assert len(joined) == len(whole)
     assert len(np.unique(joined.round(9), axis=0)) == len(joined)
@@ -133,7 +139,7 @@ def test_wall_layers_follow_a_tilted_floor_in_its_own_frame():
     corners = np.array([[0, 0], [1, 0], [1, 0.5], [0, 0.5]]) @ np.array([along, across])
     tri = np.array([corners[[0, 1, 2]], corners[[0, 2, 3]]])  # normal: along x across = up
     frame = Frame(origin=(0, 0, 0), axes=tuple(map(tuple, np.column_stack([along, across, up]))))
-    [(x, n)] = wall_layers([Surface("chute", tri)], dp, layers, [frame])
+    [(x, n)] = layers_of([Surface("chute", tri)], dp, layers, [frame])
     u = frame.local(x)
     under = np.all((u[:, :2] > 0) & (u[:, :2] < (1.0, 0.5)), axis=1)
     assert under.sum() == 20 * 10 * layers
@@ -157,7 +163,7 @@ def test_where_two_frames_meet_no_wall_particles_crowd_and_no_hole_opens():
     slope = np.array([[top, (0, 0, 0), across], [top, across, top + across]], float)
     level = np.array([[(0, 0, 0), (1, 0, 0), (1, 0.5, 0)], [(0, 0, 0), (1, 0.5, 0), (0, 0.5, 0)]], float)
     frames = [Frame(origin=tuple(top), axes=tuple(map(tuple, np.column_stack([along, (0, 1, 0), up])))), Frame()]
-    parts = wall_layers([Surface("slope", slope), Surface("level", level)], dp, layers, frames)
+    parts = layers_of([Surface("slope", slope), Surface("level", level)], dp, layers, frames)
     x = np.concatenate([p for p, _ in parts])
     d = np.linalg.norm(x[:, None] - x[None], axis=2)
     np.fill_diagonal(d, np.inf)
@@ -181,7 +187,7 @@ def test_coplanar_walls_in_two_frames_leave_no_hole_at_their_seam():
     y = np.array([0, 1.0, 0])
     orient = lambda t: t if np.cross(t[0, 1] - t[0, 0], t[0, 2] - t[0, 0]) @ y > 0 else t[:, ::-1]  # noqa: E731
     frames = [Frame(origin=(0, 0, 0), axes=tuple(map(tuple, np.column_stack([along, y, up])))), Frame()]
-    parts = wall_layers([Surface("chute_side", orient(left)), Surface("runout_side", orient(right))], dp, layers, frames)
+    parts = layers_of([Surface("chute_side", orient(left)), Surface("runout_side", orient(right))], dp, layers, frames)
     x = np.concatenate([p for p, _ in parts])
     rng = np.random.default_rng(4)
     s = rng.uniform(0.1, 0.4, 3000)[:, None]

@@ -60,21 +60,11 @@ class SlabDecomposition:
         their weights; the histogram is summed over all ranks, so every rank
         computes the same cuts.
         """
-        hist = np.bincount(self.bin_of(s_local), weights=work, minlength=self.nbins)
+        # float even for a rank with no particles (bincount gives int64 zeros then)
+        hist = np.bincount(self.bin_of(s_local), weights=work, minlength=self.nbins).astype(np.float64)
         total = np.empty_like(hist)
         self.comm.Allreduce(hist, total, op=MPI.SUM)
-        cum = np.cumsum(total)
-        size = self.comm.size
-        edges = np.empty(size + 1, dtype=np.int64)
-        edges[0], edges[-1] = 0, self.nbins
-        for k in range(1, size):
-            target = cum[-1] * k / size
-            e = int(np.searchsorted(cum, target, side="left"))  # cut after bin e, or before it
-            if e > 0 and target - cum[e - 1] < cum[e] - target:
-                e -= 1
-            e += 1
-            edges[k] = min(max(e, edges[k - 1] + 1), self.nbins - (size - k))
-        self.edges = edges
+        self.edges = balanced_edges(total, self.comm.size)
         self._set_cuts()
 
     def imbalance(self, work_local):
@@ -87,6 +77,23 @@ class SlabDecomposition:
     def slab(self, rank=None):
         r = self.comm.rank if rank is None else rank
         return self.cuts[r], self.cuts[r + 1]
+
+
+def balanced_edges(work, size):
+    """Bin edges (size + 1, from 0 to len(work)) of ``size`` slabs of at least one bin each with
+    about equal sums of the per-bin ``work``: each cut sits at the bin edge nearest to its share."""
+    nbins = len(work)
+    cum = np.cumsum(work)
+    edges = np.empty(size + 1, dtype=np.int64)
+    edges[0], edges[-1] = 0, nbins
+    for k in range(1, size):
+        target = cum[-1] * k / size
+        e = int(np.searchsorted(cum, target, side="left"))  # cut after bin e, or before it
+        if e > 0 and target - cum[e - 1] < cum[e] - target:
+            e -= 1
+        e += 1
+        edges[k] = min(max(e, edges[k - 1] + 1), nbins - (size - k))
+    return edges
 
 
 def migrate(particles, decomp):

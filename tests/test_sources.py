@@ -1,0 +1,83 @@
+"""Particle sources (mpisph/sources.py, lattice.py): a slab of a source is exactly the source's
+particles in that slab, whatever the cuts, so ranks that each build only their own slab together
+build the case."""
+
+import numpy as np
+import pytest
+
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.geometry import block, box, box_walls, walls_around
+from mpisph.lattice import Frame, Lattice
+from mpisph.sources import ArrayPoints
+
+
+def slabs(source, axis, cuts):
+    """(indices, positions, normals or None) of ``source`` gathered from its slabs between ``cuts``."""
+    edges = [-np.inf, *cuts, np.inf]
+    parts = [source.window(axis, a, b) for a, b in zip(edges[:-1], edges[1:])]
+    index = np.concatenate([p[0] for p in parts])
+    order = np.argsort(index, kind="stable")
+    x = np.concatenate([p[1] for p in parts])[order]
+    normal = None if parts[0][2] is None else np.concatenate([p[2] for p in parts])[order]
+    return index[order], x, normal
+
+
+def assert_slabs_make_the_whole(source, axis, n_cuts=5, seed=0):
+    whole_index, whole_x, whole_n = source.window(axis, -np.inf, np.inf)
+    assert np.all(np.diff(whole_index) > 0) and (len(whole_index) == 0 or whole_index[-1] < source.size)
+    cuts = np.sort(np.random.default_rng(seed).uniform(whole_x[:, axis].min(), whole_x[:, axis].max(), n_cuts))
+    index, x, normal = slabs(source, axis, cuts)
+    assert np.array_equal(index, whole_index) and np.array_equal(x, whole_x)
+    if whole_n is not None:
+        assert np.array_equal(normal, whole_n)
+    return whole_x
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_a_tilted_lattice_cut_into_slabs_along_any_axis_is_the_lattice(axis):
+    c, s = np.cos(0.7), np.sin(0.7)
+    frame = Frame(origin=(0.3, -0.2, 0.1), axes=((c, 0.0, -s), (0.0, 1.0, 0.0), (s, 0.0, c)))
+    lattice = Lattice((-3, 0, 2), (9, 5, 11), 0.1, frame)
+    x = assert_slabs_make_the_whole(ArrayPoints(lattice.points(np.arange(lattice.size))), axis)
+    index, y, _ = slabs(ArrayPoints(x), axis, [0.05, 0.2])
+    assert np.array_equal(y, x)
+    whole = lattice.window(axis, -np.inf, np.inf)
+    assert np.array_equal(whole, np.arange(lattice.size))
+    for lo, hi in [(-0.1, 0.3), (0.25, 0.25), (5.0, 6.0)]:
+        inside = np.nonzero((x[:, axis] >= lo) & (x[:, axis] < hi))[0]
+        assert np.array_equal(lattice.window(axis, lo, hi), inside)
+
+
+def test_the_block_and_walls_around_it_are_box_and_box_walls_in_any_slabs():
+    lo, hi, dp = (0.0, 0.0, 0.0), (1.0, 0.6, 0.8), 0.1
+    x = assert_slabs_make_the_whole(block(lo, hi, dp), 0)
+    assert np.array_equal(x, box(lo, hi, dp))
+    walls = walls_around(lo, hi, dp, 3, open_sides=("+z",))
+    for axis in range(3):
+        x = assert_slabs_make_the_whole(walls, axis)
+    ref_x, ref_n = box_walls(lo, hi, dp, 3, open_sides=("+z",))
+    x, n = walls.everything()
+    assert np.array_equal(x, ref_x) and np.array_equal(n, ref_n)
+    assert walls.estimate == len(x) and walls.size > len(x)
+
+
+def test_the_flumes_soil_and_walls_in_any_slabs_are_the_whole():
+    """The STL fill on the slope's lattice and the five wall parts, whose joints depend on earlier
+    parts' particles: each part's slabs together are the part."""
+    module = load_case_module("flume_3d")
+    case = build_case(module, resolve_params(module, {"dp": "0.1"}))
+    for source in case.sources:
+        for axis in (0, 2):
+            x = assert_slabs_make_the_whole(source, axis, seed=axis)
+        assert source.estimate >= 0.9 * len(x)
+
+
+def test_a_body_given_by_a_function_of_position_and_probes_in_a_lattice():
+    module = load_case_module("cube_failure_3d")
+    case = build_case(module, resolve_params(module, {"dp": "0.25"}))
+    soil = case.bodies[0]
+    index, x, _ = soil.x.window(0, 0.0, 0.5)
+    stress = soil.stress(x)
+    assert np.allclose(stress[:, 2, 2], -case.material.rho0 * 9.8 * (2.0 - x[:, 2]))  # the top at z = 2 m
+    assert np.array_equal(soil.x.position(index[3]), x[3])
+    assert case._initial_position(int(index[3])).tolist() == x[3].tolist()
