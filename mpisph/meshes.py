@@ -237,6 +237,15 @@ class _WallLayers:
                                for t in tri])
         self._last = None  # (window, result): the parts ask for the same slab one after the other
 
+    def estimate(self, k):
+        """About how many particles part k has: ``layers`` deep behind its area, and a quarter
+        cylinder of that radius about each open edge where the layers wrap round it."""
+        t = self.parts[k].triangles
+        area = 0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1).sum()
+        edges = open_edges(self.parts[k])
+        perimeter = np.linalg.norm(edges[:, 1] - edges[:, 0], axis=1).sum()
+        return int((area * self.depth + perimeter * np.pi * self.depth**2 / 4) / self.dp**3)
+
     def _candidates(self, k, axis, lo, hi):
         """Indices (in part k's lattice, ascending) of the points in the boxes about its triangles
         whose coordinate along ``axis`` lies in [lo, hi)."""
@@ -290,7 +299,7 @@ class _PartLayers(Points):
     def __init__(self, walls, k):
         self.walls, self.k = walls, k
         self.size = walls.lattices[k].size
-        self.estimate = min(self.size, sum(box.size for box in walls.boxes[k]))  # boxes overlap: a bound
+        self.estimate = min(self.size, sum(box.size for box in walls.boxes[k]), walls.estimate(k))
 
     def window(self, axis, lo, hi):
         return self.walls.window(axis, lo, hi)[self.k]

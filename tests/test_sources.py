@@ -66,10 +66,13 @@ def test_the_flumes_soil_and_walls_in_any_slabs_are_the_whole():
     parts' particles: each part's slabs together are the part."""
     module = load_case_module("flume_3d")
     case = build_case(module, resolve_params(module, {"dp": "0.1"}))
+    counts = []
     for source in case.sources:
         for axis in (0, 2):
             x = assert_slabs_make_the_whole(source, axis, seed=axis)
-        assert source.estimate >= 0.9 * len(x)
+        counts.append(len(x))
+    estimate = sum(source.estimate for source in case.sources)  # what the memory check takes
+    assert 0.8 * sum(counts) < estimate < 1.25 * sum(counts)
 
 
 def test_a_body_given_by_a_function_of_position_and_probes_in_a_lattice():
