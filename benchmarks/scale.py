@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/scale.py [--dp 0.0062] [--ranks 2 8] [--steps 10]
 
-dp = 0.0062 m gives about 8.1 M soil and 2.3 M wall particles. Each rank count is a fresh
+dp = 0.0062 m gives 8.06 M soil and 2.12 M wall particles. Each rank count is a fresh
 ``mpirun`` of this file's worker, after a one-rank warm-up at dp = 0.1 m that fills numba's cache
 (as the cluster jobs do). The worker builds the case as ``python -m mpisph`` does, runs the steps
 (a neighbour configuration each: the flume steps once per configuration) and writes one frame,

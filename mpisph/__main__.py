@@ -116,7 +116,7 @@ def run(args, comm):
     from .gauges import GaugeRecorder
     from .initial import particles_from_case, particles_from_frame
     from .io.diagnostics import Diagnostics
-    from .io.frames import check_frame, read_frame
+    from .io.frames import read_rows
     from .memory import check_fits, resident_bytes
     from .observables import observable_names
     from .parallel.stop import StopOnSignal
@@ -128,27 +128,24 @@ def run(args, comm):
     baseline = resident_bytes()
     module = cases.load_case_module(args.case)
     overrides = _overrides(args)
-    frame = None
     if args.restart:
-        check_frame(args.restart)
-        frame = read_frame(args.restart, walls=True)
-        written_by = frame["params"].get("case")
-        if written_by != args.case:
-            raise InputError(f"{args.restart} was written by case {written_by!r}, not {args.case!r}")
-        values = cases.resolve_params(module, overrides, base=frame["params"])
+        written = read_rows(args.restart, 0, 0)["params"]  # the frame's attributes, no particle
+        if written.get("case") != args.case:
+            raise InputError(f"{args.restart} was written by case {written.get('case')!r}, not {args.case!r}")
+        values = cases.resolve_params(module, overrides, base=written)
     else:
         values = cases.resolve_params(module, overrides)
     values["case"] = args.case
     case = cases.build_case(module, values)
     parts = make_parts(case, values)
     case.validate(parts.kernel.support)
-    if frame is None:
+    if args.restart:
+        particles, t, step = particles_from_frame(comm, args.restart, parts)
+    else:
         check_fits(comm, case.sources)
         particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
-    else:
-        particles, t, step = particles_from_frame(comm, frame, parts), frame["t"], frame["step"]
     case.forget_particles()
-    restarted, frame = frame is not None, None  # the global arrays of the frame are not kept either
+    restarted = bool(args.restart)
     out_dir = args.out or os.path.join("runs", args.case)
     progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()

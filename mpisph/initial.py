@@ -7,29 +7,19 @@ case's sources (sources.py). The cuts are those the solver's first balance
 computes (the same histogram of moving particles), so nothing migrates. Global
 ids are a source's offset plus the particle's index in it.
 
-From a frame, every rank reads the frame and keeps every size-th particle; the
-first migration of the run sends each to the rank that owns its position.
+From a frame, each rank reads an equal run of its rows; the first migration of
+the run sends each particle to the rank that owns its position.
 """
 
 import numpy as np
 from mpi4py import MPI
 
 from .errors import InputError
+from .io.frames import frame_rows, read_rows
 from .parallel.decomposition import SlabDecomposition
 from .particles import CLAMPED, MOVING, WALL, WALL_SLIP, Particles
 from .sources import as_points
 from .tensors import packed
-
-
-def _share(comm, arrays, fields, dim):
-    """This rank's strided share of the global ``arrays`` as Particles."""
-    n_global = len(arrays["gid"])
-    mine = np.arange(comm.rank, n_global, comm.size)
-    pa = Particles.empty(dim, fields, len(mine))
-    for name, a in arrays.items():
-        if name in pa.arrays:
-            pa.arrays[name][:] = a[mine]
-    return pa
 
 
 def _initial(value, index, x, shape):
@@ -129,10 +119,17 @@ def particles_from_case(comm, case, parts):
     return pa
 
 
-def particles_from_frame(comm, frame, parts):
-    """Particles (walls included) from ``read_frame(path, walls=True)``; symmetric tensors that a
-    frame of format 1 holds as (3, 3) are packed (tensors.py)."""
+def particles_from_frame(comm, path, parts):
+    """This rank's share of the particles (walls included) of the frame ``path``: an equal run of
+    its rows, which the first migration sends to their owners, so no rank reads the whole frame.
+    Symmetric tensors that a frame of format 1 holds as (3, 3) are packed (tensors.py). Returns
+    the particles, the frame's time and its step."""
+    n = frame_rows(path)
+    start, stop = n * comm.rank // comm.size, n * (comm.rank + 1) // comm.size
+    rows = read_rows(path, start, stop)
     symmetric = {f.name for f in parts.fields if f.shape in (("sym",), (6,))}
-    arrays = {k: (packed(v) if k in symmetric and v.ndim == 3 else v)
-              for k, v in frame.items() if isinstance(v, np.ndarray)}
-    return _share(comm, arrays, parts.fields, frame["dim"])
+    pa = Particles.empty(rows["dim"], parts.fields, stop - start)
+    for name, a in rows.items():
+        if name in pa.arrays:
+            pa.arrays[name][:] = packed(a) if name in symmetric and a.ndim == 3 else a
+    return pa, rows["t"], rows["step"]

@@ -245,32 +245,43 @@ def check_frame(path):
         raise InputError(f"frame {path}: {problem}")
 
 
-def read_frame(path, walls=False):
-    """Read a frame serially; arrays of moving particles sorted by gid.
+def frame_rows(path):
+    """How many particles (walls included) the frame ``path`` holds."""
+    check_frame(path)
+    with _open(path) as f:
+        return int(f["mpisph"].attrs["n_total"])
 
-    With ``walls=True`` all particles (sorted by gid) are returned.  Keys:
-    every stored field in its original shape and dtype (``x`` is (n, dim)),
-    plus ``t``, ``step``, ``dim`` and ``params``.
-    """
+
+def read_rows(path, start=0, stop=None):
+    """The stored rows [start, stop) of a frame, in file order: every field in its original shape
+    and dtype (``x`` is (n, dim)), plus ``t``, ``step``, ``dim`` and ``params``."""
     check_frame(path)
     with _open(path) as f:
         info = f["mpisph"].attrs
         dim = int(info["dim"])
-        out = {"x": f["VTKHDF/Points"][:, :dim]}
+        rows = slice(start, stop)
+        out = {"x": f["VTKHDF/Points"][rows, :dim]}
         for name, d in f["VTKHDF/PointData"].items():
             shape = tuple(json.loads(d.attrs["mpisph_shape"]))
-            a = d[()]
+            a = d[rows]
             if shape:
                 a = a[:, :int(np.prod(shape))].reshape((len(a),) + shape)
             out[name] = a.astype(np.dtype(d.attrs["mpisph_dtype"]), copy=False)
-        meta = {"t": float(info["time"]), "step": int(info["step"]),
-                "dim": dim, "params": json.loads(info["params"])}
+        out.update({"t": float(info["time"]), "step": int(info["step"]),
+                    "dim": dim, "params": json.loads(info["params"])})
+    return out
+
+
+def read_frame(path, walls=False):
+    """Read a frame serially; arrays of moving particles sorted by gid.
+
+    With ``walls=True`` all particles (sorted by gid) are returned. Keys as ``read_rows``.
+    """
+    out = read_rows(path)
     order = np.argsort(out["gid"], kind="stable")
     if not walls:
         order = order[out["kind"][order] == 0]
-    out = {k: np.ascontiguousarray(a[order]) for k, a in out.items()}
-    out.update(meta)
-    return out
+    return {k: (np.ascontiguousarray(a[order]) if isinstance(a, np.ndarray) else a) for k, a in out.items()}
 
 
 def _time_key(path):
