@@ -15,7 +15,7 @@ positions) can be set beside the 2D one and Lube's planar law.
 """
 
 from mpisph.case import Case, Param, Wall
-from mpisph.geometry import bed, cylinder, support_layers
+from mpisph.geometry import bed_layers, depth, support_layers, upright_cylinder
 from mpisph.granular_column import column_case_settings, column_params, planar_column, sand
 from mpisph.references import LUBE_R0, axisymmetric_runout
 
@@ -36,13 +36,13 @@ def setup(p):
     H0 = p.a * p.r_0
     layers = support_layers(p.h_factor)
     margin = layers * p.dp
-    column = cylinder((0.0, 0.0, 0.0), p.r_0, H0, p.dp, "the column")
+    column = upright_cylinder((0.0, 0.0, 0.0), p.r_0, H0, p.dp, "the column")
     radius = p.r_0 * (1.0 + 2.0 * float(axisymmetric_runout(p.a))) + margin  # room for grains thrown ahead
-    floor_x, floor_n, floor_d = bed((-radius, -radius), (radius, radius), p.dp, layers)
-    round_floor = floor_x[:, 0] ** 2 + floor_x[:, 1] ** 2 < radius**2
+    floor = bed_layers((-radius, -radius), (radius, radius), p.dp, layers,
+                       keep=lambda x: x[:, 0] ** 2 + x[:, 1] ** 2 < radius**2)
     edge = radius + margin
     return Case(
         domain=((-edge, -edge, -margin), (edge, edge, 1.5 * H0 + margin)),
-        walls=[Wall("floor", floor_x[round_floor], floor_n[round_floor], distance=floor_d[round_floor])],
+        walls=[Wall("floor", floor, distance=depth)],
         **column_case_settings(p, sand(p, H0), column, H0, front_axes=(0, 1), sides={"H_0": H0}),
     )

@@ -48,20 +48,15 @@ def _within_memory(counts, dp, what):
         raise InputError(too_many(count, f"dp = {dp:g} m fills {what} with", available))
 
 
-def _axis_points(lo, hi, dp, what):
-    n = lattice_layers(hi - lo, dp)  # callers check the whole lattice's count first (_within_memory)
-    if n < 1:
-        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi - lo:g} m across)")
-    return lo + (np.arange(n) + 0.5) * dp
-
-
-def block(lo, hi, dp, what="the box"):
-    """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source."""
+def block(lo, hi, dp, what="the box", normal=None):
+    """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source (with ``normal``,
+    positions -> unit normals, a wall's)."""
     counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
     if min(counts) < 1:
         a = int(np.argmin(counts))
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi[a] - lo[a]:g} m across)")
-    return LatticePoints(Lattice((0,) * len(lo), tuple(counts), dp, Frame(origin=tuple(map(float, lo)))))
+    return LatticePoints(Lattice((0,) * len(lo), tuple(counts), dp, Frame(origin=tuple(map(float, lo)))),
+                         normal=normal)
 
 
 def box(lo, hi, dp, what="the box"):
@@ -83,35 +78,60 @@ def disk(centre, radius, dp, what="the disk"):
     return centre + pts[np.sum(pts**2, axis=1) < radius**2]
 
 
-def cylinder(base, radius, height, dp, what="the cylinder"):
-    """Cell-centred lattice inside an upright cylinder standing on ``base`` (x, y, z of the centre of
-    its bottom face): points at base + (i + 1/2) dp along each axis, so the fill is symmetric about
-    the x-z and y-z planes through the axis and holds floor(height / dp) layers."""
+def upright_cylinder(base, radius, height, dp, what="the cylinder"):
+    """The cell-centred lattice inside an upright cylinder standing on ``base`` (x, y, z of the centre
+    of its bottom face), as a source: points at base + (i + 1/2) dp along each axis, so the fill is
+    symmetric about the x-z and y-z planes through the axis and holds floor(height / dp) layers,
+    a layer at a time from the bottom."""
     if 2 * radius < dp:
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({2 * radius:g} m across)")
+    layers = lattice_layers(height, dp)
+    if layers < 1:
+        raise InputError(f"spacing dp={dp:g} m is larger than {what} ({height:g} m high)")
     m = int(np.ceil(radius / dp))
-    _within_memory([2 * m, 2 * m, lattice_layers(height, dp)], dp, what)
-    ring = (np.arange(-m, m) + 0.5) * dp
-    gx, gy = np.meshgrid(ring, ring, indexing="ij")
-    inside = gx**2 + gy**2 < radius**2
-    z = _axis_points(base[2], base[2] + height, dp, what)
-    layer = np.stack([gx[inside] + base[0], gy[inside] + base[1]], axis=1)
-    return np.concatenate([np.column_stack([layer, np.full(len(layer), zk)]) for zk in z])
+    frame = Frame(origin=tuple(map(float, base)), axes=((0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0)))
+
+    def inside(x):
+        return (x[:, 0] - base[0]) ** 2 + (x[:, 1] - base[1]) ** 2 < radius**2
+
+    return LatticePoints(Lattice((0, -m, -m), (layers, m, m), dp, frame), keep=inside,
+                         estimate=math.pi * radius**2 * layers / dp**2)
+
+
+def bed_layers(lo, hi, dp, layers, keep=None):
+    """Dummy particles of a flat bed whose surface is the plane {last coordinate = 0} under the
+    footprint [lo, hi] of the other axes (x in 2D, x and y in 3D), as a source: ``layers`` lattice
+    layers, the shallowest first, with upward normals; ``keep`` (positions -> mask) trims the
+    footprint. ``depth`` gives a particle's depth below the surface (Morris walls)."""
+    counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
+    if min(counts) < 1:
+        a = int(np.argmin(counts))
+        raise InputError(f"spacing dp={dp:g} m is larger than the bed ({hi[a] - lo[a]:g} m across)")
+    dim = len(lo) + 1
+    axes = np.zeros((dim, dim))  # lattice axis 0 points down, the others along the footprint
+    axes[-1, 0] = -1.0
+    for a in range(dim - 1):
+        axes[a, a + 1] = 1.0
+    frame = Frame(origin=tuple(map(float, lo)) + (0.0,), axes=tuple(map(tuple, axes)))
+
+    def upward(x):
+        normal = np.zeros_like(x)
+        normal[:, -1] = 1.0
+        return normal
+
+    return LatticePoints(Lattice((0,) * dim, (layers, *counts), dp, frame), keep=keep, normal=upward)
+
+
+def depth(x):
+    """The depth below the plane {last coordinate = 0} of a ``bed_layers`` particle."""
+    return -x[:, -1]
 
 
 def bed(lo, hi, dp, layers):
-    """Dummy particles of a flat bed whose surface is the plane {last coordinate = 0} under the
-    footprint [lo, hi] of the other axes (x in 2D, x and y in 3D): ``layers`` lattice layers, the
-    shallowest first. Returns (positions, upward unit normals, depths below the surface)."""
+    """The arrays (positions, upward unit normals, depths below the surface) of ``bed_layers``."""
     _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)] + [layers], dp, "the bed")
-    axes = [_axis_points(a, b, dp, "the bed") for a, b in zip(lo, hi)]
-    grids = np.meshgrid(*axes, indexing="ij")
-    plane = np.stack([g.ravel() for g in grids], axis=1)
-    depth = np.repeat((np.arange(layers) + 0.5) * dp, len(plane))
-    pts = np.column_stack([np.tile(plane, (layers, 1)), -depth])
-    normals = np.zeros_like(pts)
-    normals[:, -1] = 1.0
-    return pts, normals, depth
+    x, normal = bed_layers(lo, hi, dp, layers).everything()
+    return x, normal, depth(x)
 
 
 def walls_around(lo, hi, dp, layers, open_sides=()):

@@ -17,8 +17,10 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 
 import math
 
+import numpy as np
+
 from .case import Body, Case, Front, MuIGranular, Param, Wall
-from .geometry import bed, box, lattice_layers, lattice_mismatch, support_layers
+from .geometry import bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
 
@@ -62,24 +64,30 @@ def sand(p, H0):
 
 
 def column_case_settings(p, material, column, H0, front_axes, sides):
-    """Case keywords shared by the collapses: the column body at rest under the hydrostatic pressure
-    of its lattice fill, the mu_i scheme with its options (granular_flow.py), the front gauge, the
+    """Case keywords shared by the collapses: the column body (a lattice source) at rest under the
+    hydrostatic pressure of its lattice fill, the mu_i scheme with its options (granular_flow.py), the front gauge, the
     reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
     not a whole number of dp, as the fill then changes the column's aspect ratio."""
     top = lattice_layers(H0, p.dp) * p.dp
-    pressure = material.rho0 * p.g * (top - column[:, -1])
-    dim = column.shape[1]
+    dim = len(column.lattice.frame.origin)
     return dict(
         dim=dim,
         dp=p.dp,
         material=material,
         **mu_i_scheme(p),
-        bodies=[Body("column", column, pressure=pressure)],
+        bodies=[Body("column", column, pressure=lambda x: material.rho0 * p.g * (top - x[:, -1]))],
         gravity=(0.0,) * (dim - 1) + (-p.g,),
         front=Front((0.0,) * dim, front_axes),
         u_ref=math.sqrt(p.g * H0),
         warnings=[w for w in (lattice_mismatch(k, v, p.dp) for k, v in sides.items()) if w],
     )
+
+
+def along_x(x):
+    """The unit normal along +x of each of the positions ``x`` (the back wall's)."""
+    normal = np.zeros_like(x)
+    normal[:, 0] = 1.0
+    return normal
 
 
 def planar_column(p, L0, back_wall_slip, across=None):
@@ -95,15 +103,13 @@ def planar_column(p, L0, back_wall_slip, across=None):
         """A point (x, z) in 2D, (x, y, z) in 3D."""
         return (x, z) if across is None else (x, y, z)
 
-    column = box(at(0.0, 0.0), at(L0, H0, across), p.dp, "the column")
-    floor_x, floor_n, floor_d = bed(at(-margin, 0.0)[:-1], at(floor_end, 0.0, across)[:-1], p.dp, layers)
-    back = box(at(-margin, 0.0), at(0.0, H0 + margin, across), p.dp, "the back wall")
-    back_n = back * 0.0
-    back_n[:, 0] = 1.0
+    column = block(at(0.0, 0.0), at(L0, H0, across), p.dp, "the column")
+    floor = bed_layers(at(-margin, 0.0)[:-1], at(floor_end, 0.0, across)[:-1], p.dp, layers)
+    back = block(at(-margin, 0.0), at(0.0, H0 + margin, across), p.dp, "the back wall", normal=along_x)
     return Case(
         domain=(at(-margin, -margin), at(floor_end + margin, 1.5 * H0 + margin, across)),
         periodic=(False, True, False) if across else (False, False),
-        walls=[Wall("floor", floor_x, floor_n, distance=floor_d),
-               Wall("back_wall", back, back_n, slip=back_wall_slip, distance=-back[:, 0])],
+        walls=[Wall("floor", floor, distance=depth),
+               Wall("back_wall", back, slip=back_wall_slip, distance=lambda x: -x[:, 0])],
         **column_case_settings(p, sand(p, H0), column, H0, front_axes=(0,), sides={"H_0": H0, "L_0": L0}),
     )

@@ -29,7 +29,7 @@ def by_gid(arrays):
 
 
 @pytest.mark.mpi(min_size=2)
-@pytest.mark.parametrize("name, dp", [("cube_failure_3d", 0.25), ("flume_3d", 0.1)])
+@pytest.mark.parametrize("name, dp", [("cube_failure_3d", 0.25), ("flume_3d", 0.1), ("lube_collapse_3d", 0.0097)])
 def test_ranks_build_their_slabs_and_together_the_whole_case(name, dp):
     comm = MPI.COMM_WORLD
     case, parts, pa = build(comm, name, dp)
