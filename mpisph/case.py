@@ -80,8 +80,8 @@ RUN_PARAMS = {
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {
-    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37)",
-                        choices=("none", "tvf", "utvf")),
+    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; artificial_stress: "
+                        "Gray, Monaghan & Swift 2001)", choices=("none", "tvf", "utvf", "artificial_stress")),
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

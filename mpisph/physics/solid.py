@@ -148,7 +148,7 @@ def shear_force_tensor(n, kind, stress, p, B, T):
 
 
 @njit  # not inlined by numba: its branch on T.ndim is pruned only in a function of its own
-def _tensor_times(T, k, p, dim, d0, d1, d2):
+def tensor_times(T, k, p, dim, d0, d1, d2):
     """T_k (d0, d1, d2) as three scalars, over the in-plane block: T is T = s B (n, dim, dim),
     or the packed stress (n, 6), from which s = sigma + p I is formed."""
     if T.ndim == 2:  # packed sigma (tensors.py order xx, yy, zz, xy, yz, xz)
@@ -166,13 +166,13 @@ def _tensor_times(T, k, p, dim, d0, d1, d2):
 
 
 @njit(inline="always")
-def _mirrored_tensor_times(T, k, p, dim, d0, d1, d2, normal, j):
+def mirrored_tensor_times(T, k, p, dim, d0, d1, d2, normal, j):
     """(R T_k R) . d with R = I - 2 n n^T, the mirror in the free-slip wall of particle j (normal n):
     T_k's components across the wall (n-t) change sign, those along and normal to it stay."""
     n0, n1 = normal[j, 0], normal[j, 1]
     n2 = normal[j, 2] if dim == 3 else 0.0
     dn = d0 * n0 + d1 * n1 + d2 * n2
-    y0, y1, y2 = _tensor_times(T, k, p, dim, d0 - 2.0 * dn * n0, d1 - 2.0 * dn * n1, d2 - 2.0 * dn * n2)
+    y0, y1, y2 = tensor_times(T, k, p, dim, d0 - 2.0 * dn * n0, d1 - 2.0 * dn * n1, d2 - 2.0 * dn * n2)
     yn = y0 * n0 + y1 * n1 + y2 * n2
     return y0 - 2.0 * yn * n0, y1 - 2.0 * yn * n1, y2 - 2.0 * yn * n2
 
@@ -208,16 +208,16 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0,
             pressure = p[i] + p[q] - beta * 0.5 * (rho[i] + rho[q]) * c0 * u_jump
             f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
             if mirror:
-                t0, t1, t2 = _mirrored_tensor_times(T, i, p, dim, d0, d1, d2, normal, j)
+                t0, t1, t2 = mirrored_tensor_times(T, i, p, dim, d0, d1, d2, normal, j)
             else:
-                t0, t1, t2 = _tensor_times(T, q, p, dim, d0, d1, d2)
+                t0, t1, t2 = tensor_times(T, q, p, dim, d0, d1, d2)
             a0 += f * (t0 - pressure * d0)
             a1 += f * (t1 - pressure * d1)
             a2 += f * (t2 - pressure * d2)
             g0 += f * d0
             g1 += f * d1
             g2 += f * d2
-        t0, t1, t2 = _tensor_times(T, i, p, dim, g0, g1, g2)
+        t0, t1, t2 = tensor_times(T, i, p, dim, g0, g1, g2)
         acc[i, 0] += (a0 + t0) / rho[i]
         acc[i, 1] += (a1 + t1) / rho[i]
         if dim == 3:

@@ -16,6 +16,9 @@ class Stabiliser:
     needs_surface = False
     fields = ()
 
+    def __init__(self, case):
+        """A stabiliser is made for one case (``Case``); those that need its spacing keep it."""
+
     def forces(self):
         """Force terms this stabiliser adds to the acceleration, in order."""
         return ()
