@@ -6,7 +6,7 @@ moving particles only. The acceleration is summed in this order:
 1. ``Gravity`` (Case.gravity);
 2. the scheme's terms (fluid: viscosity, then the Riemann pressure; solids: the
    Riemann stress);
-3. the stabilisers' terms (none yet: artificial stress will be one);
+3. the stabilisers' terms (artificial stress);
 4. the case's own terms (``Case.forces``);
 
 with the frozen terms first (in that order), then the others (in that order).
