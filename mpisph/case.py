@@ -82,6 +82,8 @@ RUN_PARAMS = {
 SOLID_PARAMS = {
     "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; artificial_stress: "
                         "Gray, Monaghan & Swift 2001)", choices=("none", "tvf", "utvf", "artificial_stress")),
+    "artificial_stress_epsilon": Param(0.3, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
+                                       "2001; with stabiliser=artificial_stress)", positive=True),
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

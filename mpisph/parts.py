@@ -3,7 +3,7 @@
     kernel       kernels.Kernel of the run's ``kernel`` and h = h_factor dp
     scheme       schemes.SCHEMES[case.scheme]
     forces       forces.Forces: gravity, the scheme's terms, the stabilisers', the case's
-    stabilisers  stabilisers.STABILISERS[name](case) for each of case.stabilisers, in order
+    stabilisers  stabilisers.STABILISERS[name](case, params) for each of case.stabilisers, in order
     integrator   integrators.INTEGRATORS[case.integrator] of the scheme and the forces
     criteria     integrators.time_step.TimeStepCriteria of the run's ``time_stepping``
 
@@ -57,7 +57,7 @@ def make_parts(case, params):
     unknown = [name for name in case.stabilisers if name not in STABILISERS]
     if unknown:
         raise InputError(f"stabiliser must be none or one of {', '.join(STABILISERS)}, not {unknown[0]!r}")
-    stabilisers = tuple(STABILISERS[name](case) for name in case.stabilisers)
+    stabilisers = tuple(STABILISERS[name](case, params) for name in case.stabilisers)
     if case.integrator not in INTEGRATORS:
         raise InputError(f"integrator must be one of {', '.join(INTEGRATORS)}, not {case.integrator!r}")
     terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces)

@@ -120,3 +120,15 @@ def test_the_jacobi_eigen_decomposition_matches_numpy():
             np.testing.assert_allclose(V @ np.diag(np.diag(D)) @ V.T, A, atol=1e-13)
             np.testing.assert_allclose(np.sort(np.diag(D)), np.linalg.eigvalsh(A), atol=1e-13)
             np.testing.assert_allclose(V.T @ V, np.eye(dim), atol=1e-14)
+
+
+def test_a_solid_case_sets_epsilon():
+    from mpisph.case import build_case, load_case_module, resolve_params
+    from mpisph.parts import make_parts
+    from mpisph.stabilisers.artificial_stress import ArtificialStressForce
+    module = load_case_module("cohesive_failure_2d")
+    values = resolve_params(module, {"dp": "0.2", "stabiliser": "artificial_stress",
+                                     "artificial_stress_epsilon": "0.6"})
+    parts = make_parts(build_case(module, values), values)
+    [term] = [t for t in parts.forces.terms if isinstance(t, ArtificialStressForce)]
+    assert term.epsilon == 0.6 and term.dp == 0.2

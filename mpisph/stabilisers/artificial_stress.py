@@ -8,7 +8,8 @@ where it is compressive, rotated back, R_i = Q R' Q^T. The acceleration
     dv_i/dt += sum_j m_j f_ij^n (R_i + R_j) . grad_i W_ij,     f_ij = W(r_ij) / W(dp),
 
 is repulsive for a pair in tension, largest for pairs nearer than dp, and antisymmetric in i
-and j, so it conserves linear momentum. epsilon = 0.3 and n = 4 as Gray et al. use them.
+and j, so it conserves linear momentum. n = 4 and, by default, epsilon = 0.3, as Gray et al. use
+them; a solid case sets epsilon with its parameter ``artificial_stress_epsilon``.
 
 In 2D (plane strain) the principal stresses are those of the in-plane block, as Gray et al.
 have them; in 3D those of the whole tensor, from an eigen-decomposition per particle (beyond
@@ -152,8 +153,9 @@ class ArtificialStress(Stabiliser):
 
     name = "artificial_stress"
 
-    def __init__(self, case):
+    def __init__(self, case, params):
         self.dp = case.dp
+        self.epsilon = params.get("artificial_stress_epsilon", EPSILON)
 
     def forces(self):
-        return (ArtificialStressForce(self.dp),)
+        return (ArtificialStressForce(self.dp, self.epsilon),)

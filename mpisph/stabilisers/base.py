@@ -16,8 +16,9 @@ class Stabiliser:
     needs_surface = False
     fields = ()
 
-    def __init__(self, case):
-        """A stabiliser is made for one case (``Case``); those that need its spacing keep it."""
+    def __init__(self, case, params):
+        """A stabiliser is made for one case (``Case``) and its parameter values ``params``; those
+        that need the spacing or a parameter of their own keep it."""
 
     def forces(self):
         """Force terms this stabiliser adds to the acceleration, in order."""
