@@ -48,21 +48,38 @@ def _within_memory(counts, dp, what):
         raise InputError(too_many(count, f"dp = {dp:g} m fills {what} with", available))
 
 
-def block(lo, hi, dp, what="the box", normal=None):
-    """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source (with ``normal``,
-    positions -> unit normals, a wall's)."""
+def _layer_counts(lo, hi, dp, what):
+    """Lattice layers along each side of the box [lo, hi]; InputError if a side holds none."""
     counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
     if min(counts) < 1:
         a = int(np.argmin(counts))
         raise InputError(f"spacing dp={dp:g} m is larger than {what} ({hi[a] - lo[a]:g} m across)")
+    return counts
+
+
+def along(axis):
+    """The function that gives each of the positions x the unit normal along ``axis`` (-1: the
+    last, upwards), for the walls whose particles all face one way."""
+    def normal(x):
+        out = np.zeros_like(x)
+        out[:, axis] = 1.0
+        return out
+    return normal
+
+
+def block(lo, hi, dp, what="the box", normal=None):
+    """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source (with ``normal``,
+    positions -> unit normals, a wall's)."""
+    counts = _layer_counts(lo, hi, dp, what)
     return LatticePoints(Lattice((0,) * len(lo), tuple(counts), dp, Frame(origin=tuple(map(float, lo)))),
                          normal=normal)
 
 
 def box(lo, hi, dp, what="the box"):
     """Cell-centred lattice filling the box [lo, hi] (2D or 3D)."""
-    _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)], dp, what)
-    return block(lo, hi, dp, what).everything()[0]
+    points = block(lo, hi, dp, what)
+    _within_memory([points.size], dp, what)
+    return points.everything()[0]
 
 
 def disk(centre, radius, dp, what="the disk"):
@@ -103,23 +120,14 @@ def bed_layers(lo, hi, dp, layers, keep=None):
     footprint [lo, hi] of the other axes (x in 2D, x and y in 3D), as a source: ``layers`` lattice
     layers, the shallowest first, with upward normals; ``keep`` (positions -> mask) trims the
     footprint. ``depth`` gives a particle's depth below the surface (Morris walls)."""
-    counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
-    if min(counts) < 1:
-        a = int(np.argmin(counts))
-        raise InputError(f"spacing dp={dp:g} m is larger than the bed ({hi[a] - lo[a]:g} m across)")
+    counts = _layer_counts(lo, hi, dp, "the bed")
     dim = len(lo) + 1
     axes = np.zeros((dim, dim))  # lattice axis 0 points down, the others along the footprint
     axes[-1, 0] = -1.0
     for a in range(dim - 1):
         axes[a, a + 1] = 1.0
     frame = Frame(origin=tuple(map(float, lo)) + (0.0,), axes=tuple(map(tuple, axes)))
-
-    def upward(x):
-        normal = np.zeros_like(x)
-        normal[:, -1] = 1.0
-        return normal
-
-    return LatticePoints(Lattice((0,) * dim, (layers, *counts), dp, frame), keep=keep, normal=upward)
+    return LatticePoints(Lattice((0,) * dim, (layers, *counts), dp, frame), keep=keep, normal=along(-1))
 
 
 def depth(x):
@@ -129,8 +137,9 @@ def depth(x):
 
 def bed(lo, hi, dp, layers):
     """The arrays (positions, upward unit normals, depths below the surface) of ``bed_layers``."""
-    _within_memory([lattice_layers(b - a, dp) for a, b in zip(lo, hi)] + [layers], dp, "the bed")
-    x, normal = bed_layers(lo, hi, dp, layers).everything()
+    points = bed_layers(lo, hi, dp, layers)
+    _within_memory([points.size], dp, "the bed")
+    x, normal = points.everything()
     return x, normal, depth(x)
 
 

@@ -17,10 +17,8 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 
 import math
 
-import numpy as np
-
 from .case import Body, Case, Front, MuIGranular, Param, Wall
-from .geometry import bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
+from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
 
@@ -65,8 +63,8 @@ def sand(p, H0):
 
 def column_case_settings(p, material, column, H0, front_axes, sides):
     """Case keywords shared by the collapses: the column body (a lattice source) at rest under the
-    hydrostatic pressure of its lattice fill, the mu_i scheme with its options (granular_flow.py), the front gauge, the
-    reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
+    hydrostatic pressure of its lattice fill, the mu_i scheme with its options (granular_flow.py),
+    the front gauge, the reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
     not a whole number of dp, as the fill then changes the column's aspect ratio."""
     top = lattice_layers(H0, p.dp) * p.dp
     dim = len(column.lattice.frame.origin)
@@ -81,13 +79,6 @@ def column_case_settings(p, material, column, H0, front_axes, sides):
         u_ref=math.sqrt(p.g * H0),
         warnings=[w for w in (lattice_mismatch(k, v, p.dp) for k, v in sides.items()) if w],
     )
-
-
-def along_x(x):
-    """The unit normal along +x of each of the positions ``x`` (the back wall's)."""
-    normal = np.zeros_like(x)
-    normal[:, 0] = 1.0
-    return normal
 
 
 def planar_column(p, L0, back_wall_slip, across=None):
@@ -105,7 +96,7 @@ def planar_column(p, L0, back_wall_slip, across=None):
 
     column = block(at(0.0, 0.0), at(L0, H0, across), p.dp, "the column")
     floor = bed_layers(at(-margin, 0.0)[:-1], at(floor_end, 0.0, across)[:-1], p.dp, layers)
-    back = block(at(-margin, 0.0), at(0.0, H0 + margin, across), p.dp, "the back wall", normal=along_x)
+    back = block(at(-margin, 0.0), at(0.0, H0 + margin, across), p.dp, "the back wall", normal=along(0))
     return Case(
         domain=(at(-margin, -margin), at(floor_end + margin, 1.5 * H0 + margin, across)),
         periodic=(False, True, False) if across else (False, False),

@@ -35,6 +35,13 @@ def _initial(value, index, x, shape):
     return value[index]
 
 
+def _body_kind(body, index, x):
+    """MOVING, or CLAMPED where the body's ``clamped`` says so, for its particles ``index``."""
+    kind = np.full(len(x), MOVING, np.int8)
+    kind[_initial(body.clamped, index, x, ()).astype(bool)] = CLAMPED
+    return kind
+
+
 def _raise_on_every_rank(comm, problem):
     """Raise InputError on every rank with the first rank's problem, if any rank has one."""
     problems = [p for p in comm.allgather(problem) if p]
@@ -52,9 +59,8 @@ def _cuts(comm, case, support):
     s, work = [], []
     for body in case.bodies:
         index, x, _ = as_points(body.x).window(axis, edges[comm.rank], edges[comm.rank + 1])
-        clamped = _initial(body.clamped, index, x, ()).astype(bool)
         s.append(x[:, axis])
-        work.append((~clamped).astype(np.float64))
+        work.append((_body_kind(body, index, x) == MOVING).astype(np.float64))  # as particle_work
     decomp.balance(np.concatenate(s), np.concatenate(work))
     return decomp
 
@@ -82,9 +88,7 @@ def particles_from_case(comm, case, parts):
             distance = np.full(n, np.nan) if item.distance is None else _initial(item.distance, index, x, ())
             columns["wall_distance"].append(distance)
             continue
-        kind = np.full(n, MOVING, np.int8)
-        kind[_initial(item.clamped, index, x, ()).astype(bool)] = CLAMPED
-        columns["kind"].append(kind)
+        columns["kind"].append(_body_kind(item, index, x))
         columns["v"].append(_initial(item.velocity, index, x, (dim,)))
         stress = None if item.stress is None else _initial(item.stress, index, x, (3, 3))
         columns["stress"].append(np.zeros((n, 6)) if stress is None else packed(stress))

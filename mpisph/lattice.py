@@ -37,10 +37,6 @@ class Frame:
         """World points -> coordinates along the frame's axes."""
         return (np.asarray(x, float) - np.asarray(self.origin, float)) @ self.matrix()
 
-    def world(self, u):
-        """Frame coordinates (n, d) -> world points, element by element (module docstring)."""
-        return _world(self.origin, self.matrix(), np.asarray(u, float))
-
 
 def _world(origin, r, u, axes=None):
     """origin + r @ u for each row of the frame coordinates ``u``, along the world ``axes`` (all)."""

@@ -222,7 +222,7 @@ class _WallLayers:
     of one of its triangles: only the boxes about its triangles are searched."""
 
     def __init__(self, parts, dp, layers, frames):
-        self.parts, self.dp, self.frames = parts, dp, frames
+        self.parts, self.dp = parts, dp
         self.depth = layers * dp
         self.triangles = np.concatenate([s.triangles for s in parts])
         self.normals = np.concatenate([s.normals for s in parts])
