@@ -15,13 +15,21 @@ A mesh is read as oriented triangles (quads and polygons are split into fans). T
 
 Both place particles at the cell centres of a lattice in a ``Frame``: origin + axes @ ((i + 1/2)
 dp), so that a face lying on a lattice plane of the frame has its particles and its wall
-particles dp/2 from it on either side. Walls of several parts (a chute on its slope, a run-out
-on the level) each take their own frame. Where parts meet, a point behind more than one of them
-belongs to each part it is within dp of being nearest to, so both lattices fill a band about
-the joint, and a particle nearer than 3/4 dp to one of an earlier part is left out of that band.
-The joint then has no hole wider than a lattice has anyway: cut at the bisector instead, with
-the particles nearer than dp/2 to the other lattice left out, it had gaps about a particle wide
-through all layers, and in flume_3d soil leaked through them out of the flume.
+particles dp/2 from it on either side.
+
+Walls of several parts (a chute on its slope, a run-out on the level) each take their own frame.
+Where parts meet, a point behind more than one of them belongs to each part it is within dp of
+being nearest to, so both lattices fill a band about the joint. In that band a later part's
+particle is left out where the earlier parts' particles already fill its place: where their
+kernel sum about it (Wendland C2, h = dp) is at least half a full lattice's, or one of them is
+nearer than dp/2. Half is the sum at the edge of a filled half-space, so across a flat edge the
+later lattice starts, on average over the offsets of the two lattices, one spacing beyond the
+earlier one's last layer. Two earlier rules left holes: cut at the bisector, gaps about a
+particle wide through all layers, through which soil leaked out of flume_3d; particles nearer
+than 3/4 dp to an earlier part's left out, a band about a third of a particle too thin along
+every seam: a particle dp/2 in front of the side walls' seam was pushed back 33 % less than by
+the continuous wall, one over the floors' joint at the foot 31 % less (scripts/flume_walls.py,
+wall_push.py), and soil still leaked.
 """
 
 from dataclasses import dataclass
@@ -32,12 +40,13 @@ import numpy as np
 from numba import njit
 
 from .errors import InputError
+from .kernels import Kernel, w
 from .lattice import Frame, Lattice
 from .sources import LatticePoints, Points
 
 # meshio cell types whose cells are planar polygons, split into triangle fans
 _POLYGONS = ("triangle", "quad", "polygon")
-SEAM = 0.75  # times dp: the closest two wall particles of different parts may come in a joint's band
+COVERED = 0.5  # a joint's point is filled where earlier parts' kernel sum is this fraction of a full lattice's
 
 
 @dataclass
@@ -217,9 +226,9 @@ def wall_layers(parts, dp, layers, frames=None):
 
 class _WallLayers:
     """The wall layers of all parts, a slab at a time. A part's particle near a joint depends on
-    the particles an earlier part keeps within SEAM dp of it, so a slab is computed with a margin
-    of dp per part and then cut back. The lattice points a part can claim lie within ``layers`` dp
-    of one of its triangles: only the boxes about its triangles are searched."""
+    the particles earlier parts keep within a kernel support (2 dp) of it, so a slab is computed
+    with a margin of 2 dp per part and then cut back. The lattice points a part can claim lie
+    within ``layers`` dp of one of its triangles: only the boxes about its triangles are searched."""
 
     def __init__(self, parts, dp, layers, frames):
         self.parts, self.dp = parts, dp
@@ -266,7 +275,7 @@ class _WallLayers:
         if self._last is not None and self._last[0] == (axis, lo, hi):
             return self._last[1]
         dp, depth, n_parts = self.dp, self.depth, len(self.parts)
-        margin = n_parts * dp
+        margin = n_parts * 2.0 * dp
         out, kept_dist = [], []  # per part: (indices, positions, normals), and their distances to every part
         for k in range(n_parts):
             index = self._candidates(k, axis, lo - margin, hi + margin)
@@ -277,11 +286,12 @@ class _WallLayers:
             for j in range(n_parts):
                 if j != k:  # another part nearer by more than dp takes the point
                     mine &= ~(claims[:, j] & (dist[:, j] < dist[:, k] - dp))
-            for j, (_, earlier, _) in enumerate(out):  # in a joint's band the earlier part's particle stays
-                joint = mine & (dist[:, j] < depth + 2.0 * dp)
-                if joint.any():
-                    close = kept_dist[j][:, k] < depth + 2.0 * dp
-                    mine[joint] = _farther_than(x[joint], earlier[close], SEAM * dp)
+            band = depth + 2.0 * dp  # a joint's band: within this of an earlier part
+            joint = mine & np.any(dist[:, :k] < band, axis=1)
+            if joint.any():  # the earlier parts' particles fill the place, or this part's do
+                earlier = np.concatenate([p[d[:, k] < band] for (_, p, _), d in zip(out, kept_dist)])
+                coverage, nearest = _coverage(x[joint], earlier, dp)
+                mine[joint] = (coverage < COVERED) & (nearest >= 0.5 * dp)
             towards = near[mine, k] - x[mine]
             out.append((index[mine], x[mine], towards / np.linalg.norm(towards, axis=1)[:, None]))
             kept_dist.append(dist[mine])
@@ -308,34 +318,45 @@ class _PartLayers(Points):
         return self.walls.lattices[self.k].points(np.array([index]))[0]
 
 
-def _farther_than(points, others, radius):
-    """Whether each point lies farther than ``radius`` from every one of ``others``: ``others``
-    are sorted into cells ``radius`` wide and each point looks in the 27 cells about its own."""
+def _coverage(points, others, dp):
+    """sum_o dp^3 W(|p - o|) over ``others`` about each of ``points`` (Wendland C2, h = dp) as a
+    fraction of a full cubic lattice's sum, and the distance to the nearest of them (inf beyond
+    the support). ``others`` are sorted into cells a support wide and each
+    point looks in the 27 cells about its own; each point's terms are summed in ascending order, so
+    the sum does not depend on which others a slab holds beyond the support."""
+    kernel = Kernel("wendland_c2", dp, 3)
+    out, nearest = np.zeros(len(points)), np.full(len(points), np.inf)
     if len(others) == 0:
-        return np.ones(len(points), np.bool_)
+        return out, nearest
+    radius = kernel.support
     lo = others.min(axis=0)
     cells = np.floor((others - lo) / radius).astype(np.int64) + 1  # a ring of empty cells about them
     dims = cells.max(axis=0) + 2
     keys = (cells[:, 0] * dims[1] + cells[:, 1]) * dims[2] + cells[:, 2]
     order = np.argsort(keys, kind="stable")
-    return _farther_than_sorted(points, others[order], keys[order], lo, radius, dims)
+    _kernel_sums(points, others[order], keys[order], lo, radius, dims, kernel.params, out, nearest)
+    return out * dp**3 / kernel.lattice_sum(dp), nearest
 
 
 @njit(cache=True)
-def _farther_than_sorted(points, others, keys, lo, radius, dims):
-    out = np.ones(len(points), np.bool_)
-    r2 = radius * radius
+def _kernel_sums(points, others, keys, lo, radius, dims, kernel, out, nearest):
+    terms = np.empty(len(others))
     for i in range(len(points)):
         c = np.floor((points[i] - lo) / radius).astype(np.int64) + 1
         if np.any(c < 0) or np.any(c > dims - 1):
-            continue  # beyond the ring of empty cells: farther than radius from all of them
+            continue  # beyond the ring of empty cells: no other within the support
+        m = 0
         for a in range(c[0] - 1, c[0] + 2):
             for b in range(c[1] - 1, c[1] + 2):
                 key = (a * dims[1] + b) * dims[2] + c[2] - 1
                 k = np.searchsorted(keys, key)
-                while out[i] and k < len(keys) and keys[k] <= key + 2:
+                while k < len(keys) and keys[k] <= key + 2:
                     d = points[i] - others[k]
-                    if _dot(d, d) < r2:
-                        out[i] = False
+                    r = np.sqrt(_dot(d, d))
+                    nearest[i] = min(nearest[i], r)
+                    value = w(r, kernel)
+                    if value > 0.0:
+                        terms[m] = value
+                        m += 1
                     k += 1
-    return out
+        out[i] = np.sort(terms[:m]).sum()
