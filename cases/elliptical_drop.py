@@ -13,6 +13,8 @@ PARAMS = {
     "c0": Param(1000.0, "m/s", "artificial sound speed (10 A0 R)", positive=True),
     "density_reinit": Param("none", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
+    "stabiliser": Param("none", "-", "particle regularisation: tvf on inner particles, utvf on all "
+                        "(000_ Eqs. 30-37)", choices=("none", "tvf", "utvf")),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),
 }
@@ -32,5 +34,6 @@ def setup(p):
         scheme="riemann_fluid",
         bodies=[Body("drop", x, velocity, pressure)],
         density_reinit=p.density_reinit,
+        stabilisers=p.stabiliser,
         u_ref=p.A0 * p.radius,
     )

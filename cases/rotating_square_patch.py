@@ -15,6 +15,8 @@ PARAMS = {
     "series_terms": Param(40, "-", "odd terms per index in the pressure series", positive=True),
     "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
+    "stabiliser": Param("none", "-", "particle regularisation: tvf on inner particles, utvf on all "
+                        "(000_ Eqs. 30-37)", choices=("none", "tvf", "utvf")),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }
@@ -48,5 +50,6 @@ def setup(p):
         scheme="riemann_fluid",
         bodies=[Body("patch", x, velocity, pressure)],
         density_reinit=p.density_reinit,
+        stabilisers=p.stabiliser,
         u_ref=u,
     )

@@ -11,6 +11,9 @@ from mpirun import mpisph
 # each runs >= 200 steps; the domain sizes set the tolerance 1e-10 * size
 CASES = {
     "elliptical_drop": (["--set", "dp=0.05", "--t-end", "0.0076", "--output-interval", "0.0038"], 5.0),
+    # a fluid with a free surface and UTVF (surface classes, B-corrected normals)
+    "rotating_square_patch": (["--set", "dp=0.05", "stabiliser=utvf", "--t-end", "1.0", "--output-interval", "0.5"],
+                              2.0),
     "dam_break_2d": (["--set", "dp=0.05", "--t-end", "0.15", "--output-interval", "0.075"], 4.3),
     "taylor_green": (["--set", "nx=30", "--t-end", "0.5", "--output-interval", "0.25"], 1.0),
     "column_collapse_2d": (["--set", "dp=0.01", "--t-end", "0.04", "--output-interval", "0.02"], 0.6),
