@@ -194,6 +194,15 @@ def _closest_on_triangle(p, a, b, c):
     return a + ab * (vb * denom) + ac * (vc * denom)
 
 
+def joined(parts):
+    """The triangles, normals and part index of every triangle of the surfaces ``parts``, one array
+    each, as ``nearest_on_parts`` takes them."""
+    triangles = np.concatenate([s.triangles for s in parts])
+    normals = np.concatenate([s.normals for s in parts])
+    part = np.concatenate([np.full(len(s.triangles), k, np.int64) for k, s in enumerate(parts)])
+    return triangles, normals, part
+
+
 @njit(cache=True)
 def nearest_on_parts(points, triangles, normals, part, n_parts):
     """For each point and part: the distance to the part's nearest triangle, that nearest point,
@@ -233,9 +242,7 @@ class _WallLayers:
     def __init__(self, parts, dp, layers, frames):
         self.parts, self.dp = parts, dp
         self.depth = layers * dp
-        self.triangles = np.concatenate([s.triangles for s in parts])
-        self.normals = np.concatenate([s.normals for s in parts])
-        self.part = np.concatenate([np.full(len(s.triangles), k, np.int64) for k, s in enumerate(parts)])
+        self.triangles, self.normals, self.part = joined(parts)
         self.lattices, self.boxes = [], []  # per part: its lattice, and the sub-lattice about each triangle
         for surface, frame in zip(parts, frames):
             tri = frame.local(surface.triangles.reshape(-1, 3)).reshape(-1, 3, 3)
@@ -320,8 +327,8 @@ class _PartLayers(Points):
 
 def _coverage(points, others, dp):
     """sum_o dp^3 W(|p - o|) over ``others`` about each of ``points`` (Wendland C2, h = dp) as a
-    fraction of a full cubic lattice's sum, and the distance to the nearest of them (inf beyond
-    the support). ``others`` are sorted into cells a support wide and each
+    fraction of a full cubic lattice's sum, and the distance to the nearest of them (inf where
+    none lies in the 27 cells about the point). ``others`` are sorted into cells a support wide and each
     point looks in the 27 cells about its own; each point's terms are summed in ascending order, so
     the sum does not depend on which others a slab holds beyond the support."""
     kernel = Kernel("wendland_c2", dp, 3)

@@ -14,7 +14,7 @@ matters (meshes.py, tests/test_meshes.py, scripts/flume_walls.py).
 
 import numpy as np
 
-from .meshes import nearest_on_parts
+from .meshes import joined, nearest_on_parts
 
 
 def continuous_region(surfaces, lo, hi, spacing, depth):
@@ -25,9 +25,7 @@ def continuous_region(surfaces, lo, hi, spacing, depth):
     first, last = np.floor(np.asarray(lo) / spacing), np.ceil(np.asarray(hi) / spacing)
     axes = [(np.arange(a, b) + 0.5) * spacing for a, b in zip(first, last)]
     x = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
-    part = np.concatenate([np.full(len(s.triangles), k) for k, s in enumerate(surfaces)])
-    dist, _, behind = nearest_on_parts(x, np.concatenate([s.triangles for s in surfaces]),
-                                       np.concatenate([s.normals for s in surfaces]), part, len(surfaces))
+    dist, _, behind = nearest_on_parts(x, *joined(surfaces), len(surfaces))
     return x[np.any(behind & (dist < depth), axis=1)]
 
 
