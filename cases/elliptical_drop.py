@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param
+from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -14,7 +14,9 @@ PARAMS = {
     "density_reinit": Param("none", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
     "stabiliser": Param("none", "-", "particle regularisation: tvf on inner particles, utvf on all "
-                        "(000_ Eqs. 30-37)", choices=("none", "tvf", "utvf")),
+                        "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017)",
+                        choices=("none", "tvf", "utvf", "shifting")),
+    **SHIFTING_PARAMS,
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),
 }

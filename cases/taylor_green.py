@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param
+from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param
 from mpisph.geometry import box
 
 PARAMS = {
@@ -13,8 +13,9 @@ PARAMS = {
     "c0": Param(10.0, "m/s", "artificial sound speed (10 U)", positive=True),
     "density_reinit": Param("inner", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "inner")),
-    "stabiliser": Param("tvf_limited", "-", "particle regularisation (001_ Eq. 16; tvf, utvf: 000_ Eqs. 30-37)",
-                        choices=("none", "tvf_limited", "tvf", "utvf")),
+    "stabiliser": Param("tvf_limited", "-", "particle regularisation (001_ Eq. 16; tvf, utvf: 000_ Eqs. 30-37; "
+                        "shifting: Xu et al. 2009)", choices=("none", "tvf_limited", "tvf", "utvf", "shifting")),
+    **SHIFTING_PARAMS,
     "jitter": Param(0.2, "dp", "amplitude of a seeded random perturbation of the initial lattice"),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),

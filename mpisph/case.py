@@ -77,13 +77,21 @@ RUN_PARAMS = {
                                positive=True),
 }
 
+# Every case that offers the stabiliser ``shifting`` exposes this.
+SHIFTING_PARAMS = {
+    "shifting_coefficient": Param(0.04, "-", "C of the particle shift (Xu et al. 2009 Eq. 35, who give 0.01-0.1; "
+                                  "with stabiliser=shifting)", positive=True),
+}
+
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {
     "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; artificial_stress: "
-                        "Gray, Monaghan & Swift 2001)", choices=("none", "tvf", "utvf", "artificial_stress")),
+                        "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009)",
+                        choices=("none", "tvf", "utvf", "artificial_stress", "shifting")),
     "artificial_stress_epsilon": Param(0.3, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
                                        "2001; with stabiliser=artificial_stress)", positive=True),
+    **SHIFTING_PARAMS,
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

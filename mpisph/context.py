@@ -10,12 +10,17 @@ reads the solver itself. It holds:
 - ``kernel``: the ``Kernel`` (kernels.py), ``kernel.params`` for the numba loops;
 - ``workspace``: scratch arrays reused from step to step (workspace.py);
 - ``refresh(names)``: send the current values of the named fields to the ghosts;
-- ``correction_matrices()``: B of 000_ Eq. 24 on this configuration, computed once.
+- ``correction_matrices()``: B of 000_ Eq. 24 on this configuration, computed once;
+- ``advection_step``: how long the configuration is kept (the minimum over ranks of the
+  time-step criteria), set by the solver before the stabilisers are applied;
+- ``max_over_ranks(value)``: the largest of a value over the ranks.
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from mpi4py import MPI
 
 from . import tensors
 from .correction import correction_matrix
@@ -32,11 +37,16 @@ class StepContext:
     kernel: object
     halo: object
     workspace: object
+    advection_step: float = math.nan
     _B: np.ndarray | None = field(default=None, repr=False)
 
     def refresh(self, names):
         """Send the current values of the fields ``names`` of the owned particles to their ghosts."""
         self.halo.refresh(self.particles, list(names))
+
+    def max_over_ranks(self, value):
+        """The largest of ``value`` over the ranks (exact: a maximum does not round)."""
+        return self.halo.comm.allreduce(value, op=MPI.MAX)
 
     def correction_matrices(self):
         """B of 000_ Eq. 24 for the owned particles on this configuration, computed when first

@@ -28,6 +28,7 @@ class Scheme:
     materials = ()  # the material classes (materials.py) this scheme discretises
     fields = ()  # per-particle fields it owns (particles.Field)
     state_fields = ()  # fields the momentum sum reads from neighbours
+    carried_fields = ("v", "rho")  # what a particle carries: corrected to its new place when shifted
     needs_surface = False  # free-surface classes every configuration (surface.py)
     acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
     observable_names = ()  # its columns of diagnostics.csv

@@ -19,12 +19,14 @@ Per advection step (one neighbour configuration), on every rank:
                    kernel-gradient correction)
     9. frozen      the force terms fixed over the configuration (gravity, viscosity;
                    forces.py)
-   10. stabilise   the case's stabilisers in order (the transport-velocity shift
+   10. limits      each rank's time step and advection step (integrators/time_step.py),
+                   the minimum over ranks
+   11. stabilise   the case's stabilisers in order (the transport-velocity shift
                    acts as the shift after the previous Verlet update, 000_ Eq. 42)
-   11. steps       time steps of the integrator (integrators/) until the advection
-                   step is covered; each rank's limits (integrators/time_step.py),
-                   the minimum over ranks, clipped to output times
-   12. stop        a SIGTERM or SIGUSR1 received on any rank (parallel/stop.py) ends
+   12. steps       time steps of the integrator (integrators/) until the advection
+                   step is covered, the first with the limits of 10, each later one
+                   with its own; clipped to output times
+   13. stop        a SIGTERM or SIGUSR1 received on any rank (parallel/stop.py) ends
                    the run after this step with a frame to restart from
 
 Every output interval one frame holds the whole global state. The physics is
@@ -85,13 +87,16 @@ class Simulation:
     # -- one advection step -------------------------------------------------
 
     def _configure(self):
-        """Steps 1-10 of the module docstring."""
+        """Steps 1-11 of the module docstring; the limits [time step, advection step] of 10."""
         ctx = self._configure_geometry()
         with self.timer("physics"):
             self.parts.scheme.configure(ctx)
             self.parts.forces.configure(ctx)
+            limits = self._time_steps()
+            ctx.advection_step = limits[1]
             for stabiliser in self.parts.stabilisers:
                 stabiliser.apply(ctx)
+        return limits
 
     def _configure_geometry(self):
         """Migration, halo, neighbour lists and free-surface classes of the current positions."""
@@ -165,8 +170,7 @@ class Simulation:
             self.write_frame()
             self._record()
         while self.t < t_end:
-            self._configure()
-            dt, dt_advection = self._time_steps()
+            dt, dt_advection = self._configure()
             t_next_frame = min((self.frame_index + 1) * interval, t_end)
             t_stop = min(self.t + dt_advection, t_next_frame)
             while True:

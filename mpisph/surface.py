@@ -22,6 +22,7 @@ from numba import njit
 from .kernels import pair_dw
 from .neighbours import pair_distance
 from .particles import Field, is_wall
+from .tensors import times_vector
 
 SURFACE_THRESHOLD = 0.75  # times the dimension
 INNER, NEAR_SURFACE, SURFACE, SPLASHED = 0, 1, 2, 3
@@ -67,6 +68,19 @@ def surface_classes(n, start, nbr, x, kind, div_r, threshold, h, out):
             out[i] = SURFACE if near_inner else SPLASHED
         else:
             out[i] = NEAR_SURFACE if near_outer else INNER
+
+
+@njit(cache=True)
+def tangential(i, B, dim, g0, g1, g2, v0, v1, v2):
+    """(v0, v1, v2) less its part along the free-surface normal of particle i, and whether that
+    normal exists. The normal is B_i g (000_ Eqs. 32-35; B packed as tensors.py): g = sum_j V_j
+    grad W_ij is the colour gradient of one material, walls counting as filled space."""
+    n0, n1, n2 = times_vector(B, i, dim, g0, g1, g2)
+    norm2 = n0 * n0 + n1 * n1 + n2 * n2
+    if norm2 == 0.0:
+        return v0, v1, v2, False
+    vn = (v0 * n0 + v1 * n1 + v2 * n2) / norm2
+    return v0 - vn * n0, v1 - vn * n1, v2 - vn * n2, True
 
 
 def classify(ctx):

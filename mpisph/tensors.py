@@ -38,6 +38,20 @@ def unpack_row(t, i, out):
             out[a, b] = t[i, SYM3[a, b]]
 
 
+@njit(inline="always")
+def times_vector(t, i, dim, v0, v1, v2):
+    """The symmetric dim x dim tensor packed in row ``t[i]`` times (v0, v1, v2) (v2 and the third
+    component 0 in 2D)."""
+    w0 = t[i, component(dim, 0, 0)] * v0 + t[i, component(dim, 0, 1)] * v1
+    w1 = t[i, component(dim, 1, 0)] * v0 + t[i, component(dim, 1, 1)] * v1
+    w2 = 0.0
+    if dim == 3:
+        w0 += t[i, component(3, 0, 2)] * v2
+        w1 += t[i, component(3, 1, 2)] * v2
+        w2 = t[i, component(3, 2, 0)] * v0 + t[i, component(3, 2, 1)] * v1 + t[i, component(3, 2, 2)] * v2
+    return w0, w1, w2
+
+
 @njit(cache=True)
 def adjugate(A, out):
     """out = adj A of a 2 x 2 or 3 x 3 matrix A (A adj A = det A I); returns det A. For a

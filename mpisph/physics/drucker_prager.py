@@ -177,6 +177,7 @@ class RiemannGranular(SolidScheme):
     materials = (DruckerPrager,)
     riemann_continuity = 1.0  # Eq. 16
     corrected_shear_force = False  # Eq. 25 as printed
+    carried_fields = ("v", "rho", "stress")
     fields = SolidScheme.base_fields + (
         Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
 

@@ -65,6 +65,7 @@ class RiemannElastic(SolidScheme):
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
     corrected_shear_force = True  # solid.py: conserves kinetic + strain energy
+    carried_fields = ("v", "rho", "shear_stress")
     fields = SolidScheme.base_fields + (
         Field("shear_stress", (6,), np.float64, "shear (deviatoric) stress, packed (tensors.py) [Pa]"),)
     observable_names = ("strain_energy",)

@@ -5,10 +5,11 @@ class (base.py says what a stabiliser is). ``none`` is the empty list.
 """
 
 from .artificial_stress import ArtificialStress
+from .shifting import ParticleShifting
 from .transport_velocity import LimitedTransportVelocity, TransportVelocity, UnifiedTransportVelocity
 
 STABILISERS = {c.name: c for c in (LimitedTransportVelocity, TransportVelocity, UnifiedTransportVelocity,
-                                   ArtificialStress)}
+                                   ArtificialStress, ParticleShifting)}
 
 
 def stabiliser_names(text):

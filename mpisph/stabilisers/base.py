@@ -1,9 +1,10 @@
 """What a stabiliser is: a correction applied once per neighbour configuration.
 
 A case lists its stabilisers in order (``Case.stabilisers``); after the
-scheme's configuration work and the frozen force terms, the solver calls
-``apply(ctx)`` of each in that order. A stabiliser may shift positions (the
-transport-velocity corrections), declare fields it needs (``fields``), ask
+scheme's configuration work, the frozen force terms and the time-step limits
+(``ctx.advection_step``), the solver calls ``apply(ctx)`` of each in that
+order. A stabiliser may shift positions (the transport-velocity corrections,
+particle shifting) and correct fields, declare fields it needs (``fields``), ask
 for the free-surface classes (``needs_surface``) and add force terms to the
 acceleration (``forces()``, summed after the scheme's; forces.py).
 """

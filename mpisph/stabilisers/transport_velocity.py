@@ -41,7 +41,7 @@ from .. import surface
 from ..kernels import pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING
-from ..tensors import component, size
+from ..tensors import size
 from .base import Stabiliser
 
 LIMITER_C = 1000.0
@@ -97,21 +97,10 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
         g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, k)
-        if cls[i] != surface.INNER:  # Eq. 36: the tangential part, normal n = B g / |B g| (Eq. 35; B packed)
-            n0 = B[i, component(dim, 0, 0)] * g0 + B[i, component(dim, 0, 1)] * g1
-            n1 = B[i, component(dim, 1, 0)] * g0 + B[i, component(dim, 1, 1)] * g1
-            n2 = 0.0
-            if dim == 3:
-                n0 += B[i, component(3, 0, 2)] * g2
-                n1 += B[i, component(3, 1, 2)] * g2
-                n2 = B[i, component(3, 2, 0)] * g0 + B[i, component(3, 2, 1)] * g1 + B[i, component(3, 2, 2)] * g2
-            norm2 = n0 * n0 + n1 * n1 + n2 * n2
-            if norm2 == 0.0:
+        if cls[i] != surface.INNER:  # Eq. 36: the tangential part (normal B g, Eq. 35)
+            g0, g1, g2, tangent = surface.tangential(i, B, dim, g0, g1, g2, g0, g1, g2)
+            if not tangent:
                 continue
-            gn = (g0 * n0 + g1 * n1 + g2 * n2) / norm2
-            g0 -= gn * n0
-            g1 -= gn * n1
-            g2 -= gn * n2
         x[i, 0] += scale * g0
         x[i, 1] += scale * g1
         if dim == 3:

@@ -1,0 +1,20 @@
+"""Vertical cut in cohesive soil: a 4 m x 2 m Drucker-Prager block against a left wall fails under its own weight (002_ Sec. 6, Bui et al. 2008)."""
+
+from mpisph.case import Param
+from mpisph.kernels import KERNELS
+from mpisph.soil import block_on_floor, soil_params
+
+PARAMS = {
+    "L": Param(4.0, "m", "length of the soil block", positive=True),
+    "H": Param(2.0, "m", "height of the cut", positive=True),
+    "dp": Param(0.025, "m", "particle spacing (002_ Table 4)", positive=True),
+    **soil_params(rho0=1850.0, E=1.5e6, nu=0.2, cohesion=5.0e3, phi=20.0),  # 002_ Table 3
+    "kernel": Param("cubic_spline", "-", "smoothing kernel (002_: the cubic B-spline)", choices=tuple(KERNELS)),
+    "h_factor": Param(1.5, "-", "smoothing length h = h_factor * dp (002_ Table 4: h = 1.5 dp)", positive=True),
+    "t_end": Param(2.0, "s", "simulated end time", positive=True),
+    "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
+}
+
+
+def setup(p):
+    return block_on_floor(p, p.L, p.H, 2.5 * p.L, "soil")
