@@ -87,8 +87,9 @@ SHIFTING_PARAMS = {
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {
     "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; artificial_stress: "
-                        "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009)",
-                        choices=("none", "tvf", "utvf", "artificial_stress", "shifting")),
+                        "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009; adaptive_kernel: 002_ Sec. 4, "
+                        "with kernel=cubic_spline)",
+                        choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
     "artificial_stress_epsilon": Param(0.3, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
                                        "2001; with stabiliser=artificial_stress)", positive=True),
     **SHIFTING_PARAMS,

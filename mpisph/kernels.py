@@ -6,11 +6,25 @@ dimensions, value, gradient and the lattice sum that density summation divides
 by. ``Kernel(name, h, dim)`` refuses an unknown name.
 
 The pair loops take ``Kernel.params``, a numba-friendly named tuple (kind id,
-h, sigma_d), and evaluate the kernel of a pair with ``pair_w(k, r, i, j)`` and
-``pair_dw(k, r, i, j)``. Every kernel here has one smoothing length for all
-particles, so a pair evaluation is W(r_ij). A kernel with a parameter per
-particle (the adaptive B-spline of 002_, a variable h) takes the mean of the
-two particles' kernels, W_ij = (W(r; a_i) + W(r; a_j)) / 2: the pair weight is
+h, sigma_d, dimension, knots), and evaluate the kernel of a pair with
+``pair_w(k, r, i, j)`` and ``pair_dw(k, r, i, j)``. A fixed kernel has one
+shape for all particles, so a pair evaluation is W(r_ij).
+
+The adaptive cubic B-spline of 002_ (Sec. 4.1, Eq. 31; ``Kernel(...,
+adaptive=True)``, only for ``cubic_spline``) is the B-spline over the knots
+{-b, -a, 0, a, b}, b = 2, with a knot a per particle (the field ``knot``,
+which a stabiliser sets: stabilisers/adaptive_kernel.py); a = 1 is the cubic
+spline. With q = r/h,
+
+    W(q; a) = sigma_d(a) / h^d * ((a + b) q^3 - 3 a b q^2 + a^2 b^2) / (a^2 b (a + b))   q < a
+            = sigma_d(a) / h^d * (b - q)^3 / (b (b^2 - a^2))                            a <= q < b
+
+(the printed denominator "a^{2b} (a + b)" is a^2 b (a + b): only that makes the
+two pieces meet at q = a, and it gives the cubic spline's 1/6 at a = 1), and
+int W = 1 gives sigma_1 = 2 / b, sigma_2 = 10 (a + b) / (pi b (a^2 + a b + b^2))
+(both as printed) and sigma_3 = 15 / (pi b (a^2 + b^2)) (derived the same way:
+int_0^b f(q) q^2 dq = b (a^2 + b^2) / 60). A pair takes the mean of the two
+particles' kernels, W_ij = (W(r; a_i) + W(r; a_j)) / 2: the pair weight is
 then the same seen from i and from j, grad_i W_ij = -grad_j W_ji, and the pair
 forces stay antisymmetric, which conserves linear momentum.
 
@@ -26,28 +40,46 @@ import numpy as np
 from numba import njit
 
 from .errors import InputError
+from .particles import Field
 
 WENDLAND_C2 = 0
 CUBIC_SPLINE = 1
+ADAPTIVE_B_SPLINE = 2  # the cubic spline with a knot per particle (module docstring)
+KNOT_SUPPORT = 2.0  # b of 002_ Eq. 31: the support in units of h
 
 SUPPORT_FACTOR = 2.0  # support radius = SUPPORT_FACTOR * h for every kernel here
 
-KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
+KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma", "dim", "knot"))
+KNOT = Field("knot", (), np.float64, "knot a of the adaptive cubic B-spline (002_ Eq. 31; 1: the cubic spline) [-]")
 
 
 class Kernel:
-    """One smoothing kernel at smoothing length ``h`` in ``dim`` dimensions."""
+    """One smoothing kernel at smoothing length ``h`` in ``dim`` dimensions; with ``adaptive``, the
+    cubic spline with a knot per particle (module docstring), whose pair loops read the particles
+    bound by ``bind``; ``value``, ``derivative`` and ``lattice_sum`` are then those of a = 1."""
 
-    def __init__(self, name, h, dim):
+    def __init__(self, name, h, dim, adaptive=False):
         if name not in KERNELS:
             raise InputError(f"kernel must be one of {', '.join(KERNELS)}, not {name!r}")
+        if adaptive and name != "cubic_spline":
+            raise InputError(f"the adaptive kernel (002_) adapts the cubic B-spline: set kernel=cubic_spline, "
+                             f"not {name!r}")
         self.name = name
         self.kind = KERNELS[name]
         self.h = float(h)
         self.dim = dim
+        self.adaptive = adaptive
+        self.fields = (KNOT,) if adaptive else ()
         self.support = SUPPORT_FACTOR * self.h
         self.sigma = normalisation(self.kind, self.h, dim)
-        self.params = KernelParams(self.kind, self.h, self.sigma)
+        self.fixed = KernelParams(self.kind, self.h, self.sigma, dim, np.ones(0))
+        self.params = self.fixed
+
+    def bind(self, particles):
+        """Point the pair loops' parameters at the knots of ``particles`` (owned and ghosts), after
+        every rebuild of the halo; nothing to do for a fixed kernel."""
+        if self.adaptive:
+            self.params = KernelParams(ADAPTIVE_B_SPLINE, self.h, self.sigma, self.dim, particles.arrays["knot"])
 
     def value(self, r):
         """W(r) for an array of distances (any shape)."""
@@ -60,7 +92,7 @@ class Kernel:
     def _on_array(self, r, derivative):
         r = np.asarray(r, dtype=float)
         out = np.empty(r.size)
-        _values(r.ravel(), self.params, derivative, out)
+        _values(r.ravel(), self.fixed, derivative, out)
         return out.reshape(r.shape)
 
     def lattice_sum(self, dp):
@@ -112,15 +144,58 @@ def dw(r, k):
     return -0.75 * k.sigma / k.h * t * t
 
 
+@njit(cache=True)
+def knot_normalisation(a, dim):
+    """sigma_d(a) of the adaptive cubic B-spline (module docstring), to be divided by h^d."""
+    b = KNOT_SUPPORT
+    if dim == 1:
+        return 2.0 / b
+    if dim == 2:
+        return 10.0 * (a + b) / (math.pi * b * (a * a + a * b + b * b))
+    return 15.0 / (math.pi * b * (a * a + b * b))
+
+
+@njit(cache=True)
+def knot_w(r, h, a, dim):
+    """W(r; a) of the adaptive cubic B-spline (module docstring)."""
+    b = KNOT_SUPPORT
+    q = r / h
+    if q >= b:
+        return 0.0
+    sigma = knot_normalisation(a, dim) / h**dim
+    if q < a:
+        return sigma * ((a + b) * q * q * q - 3.0 * a * b * q * q + a * a * b * b) / (a * a * b * (a + b))
+    t = b - q
+    return sigma * t * t * t / (b * (b * b - a * a))
+
+
+@njit(cache=True)
+def knot_dw(r, h, a, dim):
+    """dW/dr (non-positive) of the adaptive cubic B-spline with knot ``a``."""
+    b = KNOT_SUPPORT
+    q = r / h
+    if q >= b:
+        return 0.0
+    sigma = knot_normalisation(a, dim) / h**dim
+    if q < a:
+        return sigma / h * (3.0 * (a + b) * q * q - 6.0 * a * b * q) / (a * a * b * (a + b))
+    t = b - q
+    return -3.0 * sigma / h * t * t / (b * (b * b - a * a))
+
+
 @njit(inline="always")
 def pair_w(k, r, i, j):
     """W_ij of the pair (i, j) at distance r (module docstring: the same seen from i and j)."""
+    if k.kind == ADAPTIVE_B_SPLINE:
+        return 0.5 * (knot_w(r, k.h, k.knot[i], k.dim) + knot_w(r, k.h, k.knot[j], k.dim))
     return w(r, k)
 
 
 @njit(inline="always")
 def pair_dw(k, r, i, j):
     """dW_ij/dr of the pair (i, j) at distance r; grad_i W_ij = pair_dw e_ij."""
+    if k.kind == ADAPTIVE_B_SPLINE:
+        return 0.5 * (knot_dw(r, k.h, k.knot[i], k.dim) + knot_dw(r, k.h, k.knot[j], k.dim))
     return dw(r, k)
 
 

@@ -1,6 +1,7 @@
 """The parts of a run, made from a case and its parameters.
 
-    kernel       kernels.Kernel of the run's ``kernel`` and h = h_factor dp
+    kernel       kernels.Kernel of the run's ``kernel`` and h = h_factor dp (adaptive when a
+                 stabiliser adapts it)
     scheme       schemes.SCHEMES[case.scheme]
     forces       forces.Forces: gravity, the scheme's terms, the stabilisers', the case's
     stabilisers  stabilisers.STABILISERS[name](case, params) for each of case.stabilisers, in order
@@ -41,10 +42,10 @@ class Parts:
 
     @property
     def fields(self):
-        """Core fields, then the integrator's, the scheme's, the forces', the stabilisers' and the
-        surface fields when needed; each name once."""
-        fields = (CORE_FIELDS + self.integrator.fields + self.scheme.fields + self.forces.fields
-                  + sum((s.fields for s in self.stabilisers), ()))
+        """Core fields, then the kernel's, the integrator's, the scheme's, the forces', the
+        stabilisers' and the surface fields when needed; each name once."""
+        fields = (CORE_FIELDS + self.kernel.fields + self.integrator.fields + self.scheme.fields
+                  + self.forces.fields + sum((s.fields for s in self.stabilisers), ()))
         if self.needs_surface:
             fields += surface.FIELDS
         return tuple({f.name: f for f in fields}.values())
@@ -52,12 +53,13 @@ class Parts:
 
 def make_parts(case, params):
     """The Parts of ``case`` with the run parameters ``params``; InputError for an unknown name."""
-    kernel = Kernel(params["kernel"], params["h_factor"] * case.dp, case.dim)
-    scheme = make_scheme(case, kernel)
     unknown = [name for name in case.stabilisers if name not in STABILISERS]
     if unknown:
         raise InputError(f"stabiliser must be none or one of {', '.join(STABILISERS)}, not {unknown[0]!r}")
     stabilisers = tuple(STABILISERS[name](case, params) for name in case.stabilisers)
+    kernel = Kernel(params["kernel"], params["h_factor"] * case.dp, case.dim,
+                    adaptive=any(s.adapts_kernel for s in stabilisers))
+    scheme = make_scheme(case, kernel)
     if case.integrator not in INTEGRATORS:
         raise InputError(f"integrator must be one of {', '.join(INTEGRATORS)}, not {case.integrator!r}")
     terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces)

@@ -12,9 +12,11 @@ Per advection step (one neighbour configuration), on every rank:
                    re-sorted by cell in memory (sums do not depend on it)
     5. halo        ghosts within the kernel support of each cut (periodic images too)
     6. neighbours  cell-linked lists over owned + ghosts, in canonical order;
-                   a StepContext (context.py) of this configuration
-    7. surface     free-surface classes from the position divergence, when the
-                   scheme or a stabiliser needs them
+                   a StepContext (context.py) of this configuration; the kernel
+                   bound to the particles (the adaptive kernel's knots)
+    7. prepare     each stabiliser's work before any pair sum (the adaptive
+                   kernel's knots); the free-surface classes from the position
+                   divergence, when the scheme or a stabiliser needs them
     8. configure   the scheme's per-configuration work (density reinitialisation,
                    kernel-gradient correction)
     9. frozen      the force terms fixed over the configuration (gravity, viscosity;
@@ -119,9 +121,12 @@ class Simulation:
             xc[:] = pa.x
             start, nbr = neighbour_lists(xc, pa.gid, pa.kind, pa.n_owned, self.support, self.case.domain[0],
                                          self.workspace)
+        self.parts.kernel.bind(pa)
         self.ctx = StepContext(pa, start, nbr, xc, self.parts.kernel, self.halo, self.workspace)
-        if self.parts.needs_surface:
-            with self.timer("physics"):
+        with self.timer("physics"):
+            for stabiliser in self.parts.stabilisers:
+                stabiliser.prepare(self.ctx)
+            if self.parts.needs_surface:
                 surface.classify(self.ctx)
         return self.ctx
 

@@ -23,6 +23,9 @@ CASES = {
     "oscillating_beam": (["--set", "H_over_dp=5", "stabiliser=shifting", "--t-end", "0.012", "--output-interval",
                           "0.006"], 0.6),
     "dam_break_3d": (["--set", "dp=0.1", "--t-end", "0.25", "--output-interval", "0.125"], 4.3),
+    # the adaptive B-spline: knots per particle from the pressure zones, a pair kernel of two knots
+    "vertical_cut": (["--set", "dp=0.1", "stabiliser=adaptive_kernel", "--t-end", "0.6", "--output-interval", "0.3"],
+                     10.0),
     "cube_failure_3d": (["--set", "dp=0.2", "--t-end", "0.8", "--output-interval", "0.4"], 5.6),
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
@@ -30,7 +33,8 @@ CASES = {
     # the implicit viscous kick: conjugate gradients with partition-independent sums
     "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
 }
-FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "shear_stress", "plastic_strain", "eta", "rho_s")
+FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "shear_stress", "plastic_strain", "eta", "rho_s", "knot",
+          "displacement_gradient")
 
 
 def final_state(out):

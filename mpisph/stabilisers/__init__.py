@@ -4,12 +4,13 @@
 class (base.py says what a stabiliser is). ``none`` is the empty list.
 """
 
+from .adaptive_kernel import AdaptiveKernel
 from .artificial_stress import ArtificialStress
 from .shifting import ParticleShifting
 from .transport_velocity import LimitedTransportVelocity, TransportVelocity, UnifiedTransportVelocity
 
 STABILISERS = {c.name: c for c in (LimitedTransportVelocity, TransportVelocity, UnifiedTransportVelocity,
-                                   ArtificialStress, ParticleShifting)}
+                                   ArtificialStress, ParticleShifting, AdaptiveKernel)}
 
 
 def stabiliser_names(text):

@@ -3,8 +3,10 @@
 A case lists its stabilisers in order (``Case.stabilisers``); after the
 scheme's configuration work, the frozen force terms and the time-step limits
 (``ctx.advection_step``), the solver calls ``apply(ctx)`` of each in that
-order. A stabiliser may shift positions (the transport-velocity corrections,
-particle shifting) and correct fields, declare fields it needs (``fields``), ask
+order; before that, right after the neighbour lists, its ``prepare(ctx)``. A
+stabiliser may shift positions (the transport-velocity corrections, particle
+shifting) and correct fields, adapt the kernel (``adapts_kernel``: the knots of
+002_'s B-spline), declare fields it needs (``fields``), ask
 for the free-surface classes (``needs_surface``) and add force terms to the
 acceleration (``forces()``, summed after the scheme's; forces.py).
 """
@@ -16,6 +18,7 @@ class Stabiliser:
     name = ""
     needs_surface = False
     fields = ()
+    adapts_kernel = False  # sets the knots of the adaptive kernel (kernels.py) in ``prepare``
 
     def __init__(self, case, params):
         """A stabiliser is made for one case (``Case``) and its parameter values ``params``; those
@@ -25,5 +28,9 @@ class Stabiliser:
         """Force terms this stabiliser adds to the acceleration, in order."""
         return ()
 
+    def prepare(self, ctx):
+        """Once per configuration, right after the neighbour lists, before any pair sum: what the
+        configuration's pair sums depend on (the adaptive kernel's knots)."""
+
     def apply(self, ctx):
-        """Once per configuration, after the scheme's configuration work."""
+        """Once per configuration, after the scheme's configuration work and the time-step limits."""
