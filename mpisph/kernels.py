@@ -5,10 +5,12 @@ name, support radius (``SUPPORT_FACTOR`` h), normalisation in 1, 2 or 3
 dimensions, value, gradient and the lattice sum that density summation divides
 by. ``Kernel(name, h, dim)`` refuses an unknown name.
 
-The pair loops take ``Kernel.params``, a numba-friendly named tuple (kind id,
-h, sigma_d, dimension, knots), and evaluate the kernel of a pair with
-``pair_w(k, r, i, j)`` and ``pair_dw(k, r, i, j)``. A fixed kernel has one
-shape for all particles, so a pair evaluation is W(r_ij).
+The pair loops take ``Kernel.params``, a numba-friendly named tuple, and
+evaluate the kernel of a pair with ``pair_w(k, r, i, j)`` and
+``pair_dw(k, r, i, j)``. A fixed kernel has one shape for all particles: its
+``KernelParams`` (kind id, h, sigma_d) give W(r_ij). The adaptive kernel's are
+an ``AdaptiveKernelParams`` (with the dimension and the knots); numba compiles
+every pair loop once per type, so a fixed kernel's loops carry no test of it.
 
 The adaptive cubic B-spline of 002_ (Sec. 4.1, Eq. 31; ``Kernel(...,
 adaptive=True)``, only for ``cubic_spline``) is the B-spline over the knots
@@ -37,7 +39,8 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.extending import overload
 
 from .errors import InputError
 from .particles import Field
@@ -49,7 +52,8 @@ KNOT_SUPPORT = 2.0  # b of 002_ Eq. 31: the support in units of h
 
 SUPPORT_FACTOR = 2.0  # support radius = SUPPORT_FACTOR * h for every kernel here
 
-KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma", "dim", "knot"))
+KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
+AdaptiveKernelParams = namedtuple("AdaptiveKernelParams", ("kind", "h", "sigma", "dim", "knot"))
 KNOT = Field("knot", (), np.float64, "knot a of the adaptive cubic B-spline (002_ Eq. 31; 1: the cubic spline) [-]")
 
 
@@ -72,14 +76,14 @@ class Kernel:
         self.fields = (KNOT,) if adaptive else ()
         self.support = SUPPORT_FACTOR * self.h
         self.sigma = normalisation(self.kind, self.h, dim)
-        self.fixed = KernelParams(self.kind, self.h, self.sigma, dim, np.ones(0))
-        self.params = self.fixed
+        self.params = KernelParams(self.kind, self.h, self.sigma)
 
     def bind(self, particles):
         """Point the pair loops' parameters at the knots of ``particles`` (owned and ghosts), after
         every rebuild of the halo; nothing to do for a fixed kernel."""
         if self.adaptive:
-            self.params = KernelParams(ADAPTIVE_B_SPLINE, self.h, self.sigma, self.dim, particles.arrays["knot"])
+            self.params = AdaptiveKernelParams(ADAPTIVE_B_SPLINE, self.h, self.sigma, self.dim,
+                                               particles.arrays["knot"])
 
     def value(self, r):
         """W(r) for an array of distances (any shape)."""
@@ -92,7 +96,7 @@ class Kernel:
     def _on_array(self, r, derivative):
         r = np.asarray(r, dtype=float)
         out = np.empty(r.size)
-        _values(r.ravel(), self.fixed, derivative, out)
+        _values(r.ravel(), KernelParams(self.kind, self.h, self.sigma), derivative, out)
         return out.reshape(r.shape)
 
     def lattice_sum(self, dp):
@@ -184,19 +188,50 @@ def knot_dw(r, h, a, dim):
 
 
 @njit(inline="always")
-def pair_w(k, r, i, j):
-    """W_ij of the pair (i, j) at distance r (module docstring: the same seen from i and j)."""
-    if k.kind == ADAPTIVE_B_SPLINE:
-        return 0.5 * (knot_w(r, k.h, k.knot[i], k.dim) + knot_w(r, k.h, k.knot[j], k.dim))
+def _fixed_pair_w(k, r, i, j):
     return w(r, k)
 
 
 @njit(inline="always")
+def _fixed_pair_dw(k, r, i, j):
+    return dw(r, k)
+
+
+@njit(inline="always")
+def _adaptive_pair_w(k, r, i, j):
+    return 0.5 * (knot_w(r, k.h, k.knot[i], k.dim) + knot_w(r, k.h, k.knot[j], k.dim))
+
+
+@njit(inline="always")
+def _adaptive_pair_dw(k, r, i, j):
+    return 0.5 * (knot_dw(r, k.h, k.knot[i], k.dim) + knot_dw(r, k.h, k.knot[j], k.dim))
+
+
+def pair_w(k, r, i, j):
+    """W_ij of the pair (i, j) at distance r (module docstring: the same seen from i and j)."""
+    return (_adaptive_pair_w if isinstance(k, AdaptiveKernelParams) else _fixed_pair_w)(k, r, i, j)
+
+
 def pair_dw(k, r, i, j):
     """dW_ij/dr of the pair (i, j) at distance r; grad_i W_ij = pair_dw e_ij."""
-    if k.kind == ADAPTIVE_B_SPLINE:
-        return 0.5 * (knot_dw(r, k.h, k.knot[i], k.dim) + knot_dw(r, k.h, k.knot[j], k.dim))
-    return dw(r, k)
+    return (_adaptive_pair_dw if isinstance(k, AdaptiveKernelParams) else _fixed_pair_dw)(k, r, i, j)
+
+
+def _adaptive(k):
+    """Whether the numba type ``k`` is that of an AdaptiveKernelParams."""
+    return isinstance(k, types.BaseNamedTuple) and k.instance_class is AdaptiveKernelParams
+
+
+@overload(pair_w, inline="always")
+def _pair_w(k, r, i, j):
+    pair = _adaptive_pair_w if _adaptive(k) else _fixed_pair_w
+    return lambda k, r, i, j: pair(k, r, i, j)
+
+
+@overload(pair_dw, inline="always")
+def _pair_dw(k, r, i, j):
+    pair = _adaptive_pair_dw if _adaptive(k) else _fixed_pair_dw
+    return lambda k, r, i, j: pair(k, r, i, j)
 
 
 @njit(cache=True)
