@@ -3,7 +3,7 @@ and each figure as a fraction of this machine's ceiling.
 
     .venv/bin/python benchmarks/throughput.py [--cases dam_break_2d column_collapse_2d cube_failure_3d dam_break_3d]
                                               [--repeat 3]
-    .venv/bin/python benchmarks/throughput.py --remedies [--repeat 3]
+    .venv/bin/python benchmarks/throughput.py --remedies [--stabilisers NAME ...] [--repeat 3]
 
 ``--remedies`` runs the 2D column collapse (103k particles) once per stabiliser of a solid case
 (none, tvf, utvf, artificial_stress, shifting, and adaptive_kernel with its cubic spline) on 1 and 2
@@ -63,10 +63,11 @@ REMEDIES = {"none": (), "tvf": (), "utvf": (), "artificial_stress": (), "shiftin
 REMEDY_FLOOR = 2.5e5
 
 
-def remedies(repeat):
-    """The column collapse of BENCHMARKS with each stabiliser, on 1 and 2 ranks."""
+def remedies(names, repeat):
+    """The column collapse of BENCHMARKS with each stabiliser of ``names``, on 1 and 2 ranks."""
     settings, t_end, warm_up, *_ = BENCHMARKS["column_collapse_2d"]
-    for name, extra in REMEDIES.items():
+    for name in names:
+        extra = REMEDIES[name]
         sets = [*settings, f"stabiliser={name}", *extra]
         run_case("column_collapse_2d", 1, [*warm_up, "--set", f"stabiliser={name}", *extra])  # compile
         args = [*(w for s in sets for w in ("--set", s)), "--t-end", t_end, "--output-interval", t_end]
@@ -82,9 +83,11 @@ def main():
     ap.add_argument("--cases", nargs="*", choices=list(BENCHMARKS), default=list(BENCHMARKS))
     ap.add_argument("--repeat", type=int, default=3, help="runs per rank count; the fastest counts")
     ap.add_argument("--remedies", action="store_true", help="the 2D column with each stabiliser instead")
+    ap.add_argument("--stabilisers", nargs="*", choices=list(REMEDIES), default=list(REMEDIES),
+                    help="with --remedies: these stabilisers only")
     a = ap.parse_args()
     if a.remedies:
-        remedies(a.repeat)
+        remedies(a.stabilisers, a.repeat)
         return
     ceilings = {}
     for case in a.cases:

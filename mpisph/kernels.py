@@ -15,8 +15,8 @@ every pair loop once per type, so a fixed kernel's loops carry no test of it.
 The adaptive cubic B-spline of 002_ (Sec. 4.1, Eq. 31; ``Kernel(...,
 adaptive=True)``, only for ``cubic_spline``) is the B-spline over the knots
 {-b, -a, 0, a, b}, b = 2, with a knot a per particle (the field ``knot``,
-which a stabiliser sets: stabilisers/adaptive_kernel.py); a = 1 is the cubic
-spline. With q = r/h,
+which a stabiliser sets with the factors of ``knot_coefficients``:
+stabilisers/adaptive_kernel.py); a = 1 is the cubic spline. With q = r/h,
 
     W(q; a) = sigma_d(a) / h^d * ((a + b) q^3 - 3 a b q^2 + a^2 b^2) / (a^2 b (a + b))   q < a
             = sigma_d(a) / h^d * (b - q)^3 / (b (b^2 - a^2))                            a <= q < b
@@ -53,8 +53,10 @@ KNOT_SUPPORT = 2.0  # b of 002_ Eq. 31: the support in units of h
 SUPPORT_FACTOR = 2.0  # support radius = SUPPORT_FACTOR * h for every kernel here
 
 KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
-AdaptiveKernelParams = namedtuple("AdaptiveKernelParams", ("kind", "h", "sigma", "dim", "knot"))
+AdaptiveKernelParams = namedtuple("AdaptiveKernelParams", ("kind", "h", "sigma", "dim", "knot", "coefficients"))
 KNOT = Field("knot", (), np.float64, "knot a of the adaptive cubic B-spline (002_ Eq. 31; 1: the cubic spline) [-]")
+KNOT_COEFFICIENTS = Field("knot_coefficients", (2,), np.float64,
+                          "factors of the two pieces of the adaptive B-spline (kernels.knot_coefficients)")
 
 
 class Kernel:
@@ -73,7 +75,7 @@ class Kernel:
         self.h = float(h)
         self.dim = dim
         self.adaptive = adaptive
-        self.fields = (KNOT,) if adaptive else ()
+        self.fields = (KNOT, KNOT_COEFFICIENTS) if adaptive else ()
         self.support = SUPPORT_FACTOR * self.h
         self.sigma = normalisation(self.kind, self.h, dim)
         self.params = KernelParams(self.kind, self.h, self.sigma)
@@ -83,7 +85,7 @@ class Kernel:
         every rebuild of the halo; nothing to do for a fixed kernel."""
         if self.adaptive:
             self.params = AdaptiveKernelParams(ADAPTIVE_B_SPLINE, self.h, self.sigma, self.dim,
-                                               particles.arrays["knot"])
+                                               particles.arrays["knot"], particles.arrays["knot_coefficients"])
 
     def value(self, r):
         """W(r) for an array of distances (any shape)."""
@@ -160,31 +162,40 @@ def knot_normalisation(a, dim):
 
 
 @njit(cache=True)
-def knot_w(r, h, a, dim):
-    """W(r; a) of the adaptive cubic B-spline (module docstring)."""
+def knot_coefficients(a, h, dim):
+    """The factors (inner, outer) of the two pieces of W(q; a) (module docstring), computed once per
+    particle and configuration so that a pair evaluation divides nothing: sigma_d(a) / h^d over
+    a^2 b (a + b) and over b (b^2 - a^2) (0 for a = b, which has no outer piece)."""
+    b = KNOT_SUPPORT
+    sigma = knot_normalisation(a, dim) / h**dim
+    outer = sigma / (b * (b * b - a * a)) if a < b else 0.0
+    return sigma / (a * a * b * (a + b)), outer
+
+
+@njit(inline="always")
+def knot_w(r, h, a, inner, outer):
+    """W(r; a) of the adaptive cubic B-spline, with the factors of ``knot_coefficients``."""
     b = KNOT_SUPPORT
     q = r / h
     if q >= b:
         return 0.0
-    sigma = knot_normalisation(a, dim) / h**dim
     if q < a:
-        return sigma * ((a + b) * q * q * q - 3.0 * a * b * q * q + a * a * b * b) / (a * a * b * (a + b))
+        return inner * ((a + b) * q * q * q - 3.0 * a * b * q * q + a * a * b * b)
     t = b - q
-    return sigma * t * t * t / (b * (b * b - a * a))
+    return outer * t * t * t
 
 
-@njit(cache=True)
-def knot_dw(r, h, a, dim):
-    """dW/dr (non-positive) of the adaptive cubic B-spline with knot ``a``."""
+@njit(inline="always")
+def knot_dw(r, h, a, inner, outer):
+    """dW/dr (non-positive) of the adaptive cubic B-spline, with the factors of ``knot_coefficients``."""
     b = KNOT_SUPPORT
     q = r / h
     if q >= b:
         return 0.0
-    sigma = knot_normalisation(a, dim) / h**dim
     if q < a:
-        return sigma / h * (3.0 * (a + b) * q * q - 6.0 * a * b * q) / (a * a * b * (a + b))
+        return inner / h * (3.0 * (a + b) * q * q - 6.0 * a * b * q)
     t = b - q
-    return -3.0 * sigma / h * t * t / (b * (b * b - a * a))
+    return -3.0 * outer / h * t * t
 
 
 @njit(inline="always")
@@ -199,12 +210,14 @@ def _fixed_pair_dw(k, r, i, j):
 
 @njit(inline="always")
 def _adaptive_pair_w(k, r, i, j):
-    return 0.5 * (knot_w(r, k.h, k.knot[i], k.dim) + knot_w(r, k.h, k.knot[j], k.dim))
+    c = k.coefficients
+    return 0.5 * (knot_w(r, k.h, k.knot[i], c[i, 0], c[i, 1]) + knot_w(r, k.h, k.knot[j], c[j, 0], c[j, 1]))
 
 
 @njit(inline="always")
 def _adaptive_pair_dw(k, r, i, j):
-    return 0.5 * (knot_dw(r, k.h, k.knot[i], k.dim) + knot_dw(r, k.h, k.knot[j], k.dim))
+    c = k.coefficients
+    return 0.5 * (knot_dw(r, k.h, k.knot[i], c[i, 0], c[i, 1]) + knot_dw(r, k.h, k.knot[j], c[j, 0], c[j, 1]))
 
 
 def pair_w(k, r, i, j):

@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from mpisph.kernels import Kernel
+from mpisph.kernels import Kernel, knot_coefficients
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL
 from mpisph.stabilisers.adaptive_kernel import deform_cells, farthest_immediate, pressure_zone_knots
@@ -78,7 +78,8 @@ def test_a_uniform_velocity_gradient_deforms_the_cells_by_l_dt():
         n = 12 if dim == 2 else 8
         x, kind = lattice(dim, n)
         kernel = Kernel("cubic_spline", H_OVER_DP * DP, dim, adaptive=True)
-        kernel.bind(SimpleNamespace(arrays={"knot": np.ones(len(x))}))  # a = 1 everywhere
+        coefficients = np.tile(knot_coefficients(1.0, kernel.h, dim), (len(x), 1))
+        kernel.bind(SimpleNamespace(arrays={"knot": np.ones(len(x)), "knot_coefficients": coefficients}))  # a = 1
         start, nbr = lists(x, kind, kernel)
         L = np.array([[0.3, -1.0, 0.2], [0.5, -0.4, 0.0], [0.1, 0.6, 0.2]])[:dim, :dim]
         v = x @ L.T

@@ -6,14 +6,16 @@ import numpy as np
 import pytest
 
 from mpisph.errors import InputError
-from mpisph.kernels import KERNELS, AdaptiveKernelParams, Kernel, knot_dw, knot_w, pair_dw, pair_w
+from mpisph.kernels import (KERNELS, AdaptiveKernelParams, Kernel, knot_coefficients, knot_dw, knot_w, pair_dw,
+                            pair_w)
 
 KNOTS = [0.2, 0.7, 1.0, 1.5, 1.9, 2.0]
 
 
 def knot_values(r, h, a, dim, derivative=False):
     f = knot_dw if derivative else knot_w
-    return np.array([f(x, h, a, dim) for x in r])
+    inner, outer = knot_coefficients(a, h, dim)
+    return np.array([f(x, h, a, inner, outer) for x in r])
 
 
 @pytest.mark.parametrize("name", list(KERNELS))
@@ -75,9 +77,10 @@ def test_adaptive_b_spline_slope_and_the_peak_of_its_gradient(a):
 
 def test_a_pair_of_different_knots_weighs_the_same_from_both_sides():
     knots = np.array([0.2, 1.8])
-    k = AdaptiveKernelParams(2, 0.5, 0.0, 2, knots)
+    k = AdaptiveKernelParams(2, 0.5, 0.0, 2, knots, np.array([knot_coefficients(a, 0.5, 2) for a in knots]))
     for r in (0.1, 0.4, 0.8):
-        assert pair_w(k, r, 0, 1) == pair_w(k, r, 1, 0) == 0.5 * (knot_w(r, 0.5, 0.2, 2) + knot_w(r, 0.5, 1.8, 2))
+        mean = 0.5 * (knot_values([r], 0.5, 0.2, 2)[0] + knot_values([r], 0.5, 1.8, 2)[0])
+        assert pair_w(k, r, 0, 1) == pair_w(k, r, 1, 0) == mean
         assert pair_dw(k, r, 0, 1) == pair_dw(k, r, 1, 0)
 
 

@@ -37,7 +37,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..kernels import KNOT_SUPPORT, pair_dw
+from ..kernels import KNOT_SUPPORT, knot_coefficients, pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING, Field, is_wall
 from .base import Stabiliser
@@ -93,6 +93,13 @@ def pressure_zone_knots(n, start, nbr, xc, kind, p, H, dp, h, out):
 
 
 @njit(cache=True)
+def fill_coefficients(n, knot, h, dim, out):
+    """The factors of each particle's kernel (kernels.knot_coefficients) for the particles in [0, n)."""
+    for i in range(n):
+        out[i, 0], out[i, 1] = knot_coefficients(knot[i], h, dim)
+
+
+@njit(cache=True)
 def deform_cells(n, start, nbr, xc, v, mass, rho, kind, k, dt, H):
     """H <- H + L (I + H) dt with L of Eq. 32, for the moving particles in [0, n)."""
     dim = xc.shape[1]
@@ -136,7 +143,8 @@ class AdaptiveKernel(Stabiliser):
         ctx.refresh(["p"])
         pressure_zone_knots(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.p, pa.displacement_gradient,
                             self.dp, ctx.kernel.h, pa.knot)
-        ctx.refresh(["knot"])
+        fill_coefficients(pa.n_owned, pa.knot, ctx.kernel.h, pa.dim, pa.knot_coefficients)
+        ctx.refresh(["knot", "knot_coefficients"])
 
     def apply(self, ctx):
         pa = ctx.particles
