@@ -101,7 +101,8 @@ class Simulation:
         return limits
 
     def _configure_geometry(self):
-        """Migration, halo, neighbour lists and free-surface classes of the current positions."""
+        """Migration, halo, neighbour lists, the stabilisers' preparation and the free-surface classes of
+        the current positions."""
         pa = self.particles
         self._check()
         with self.timer("exchange"):
