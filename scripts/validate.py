@@ -107,8 +107,9 @@ def elliptical_drop_remedies(ranks, dp=0.01):
             drift[st] = compare_measures(RUNS / name, case)
     errors = {s: 100 * (axes["utvf", s] / b_ref - 1) for s in (0.1, 0.05, 0.02, dp)}
     for s in (0.1, 0.05, 0.02):
-        rows.append((f"UTVF, dp = {s}: x / y semi-axis at t = 0.0076 s", f"{axes['utvf', s][0]:.4f} / {axes['utvf', s][1]:.4f}",
-                     f"{b_ref[0]:.4f} / {b_ref[1]:.4f}", f"{errors[s][0]:+.2f}% / {errors[s][1]:+.2f}%", "-"))
+        rows.append((f"UTVF, dp = {s}: x / y semi-axis at t = 0.0076 s",
+                     f"{axes['utvf', s][0]:.4f} / {axes['utvf', s][1]:.4f}", f"{b_ref[0]:.4f} / {b_ref[1]:.4f}",
+                     f"{errors[s][0]:+.2f}% / {errors[s][1]:+.2f}%", "-"))
     x_err, y_err = errors[dp]
     rows.append((f"UTVF, dp = {dp}: x semi-axis at t = 0.0076 s", f"{axes['utvf', dp][0]:.4f}", f"{b_ref[0]:.4f}",
                  f"{x_err:+.2f}%", "2%", abs(x_err) <= 2.0))
