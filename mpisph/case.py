@@ -19,6 +19,8 @@ from .kernels import KERNELS
 from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .stabilisers import stabiliser_names
+from .stabilisers.artificial_stress import EPSILON
+from .stabilisers.shifting import COEFFICIENT
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
@@ -79,7 +81,7 @@ RUN_PARAMS = {
 
 # Every case that offers the stabiliser ``shifting`` exposes this.
 SHIFTING_PARAMS = {
-    "shifting_coefficient": Param(0.04, "-", "C of the particle shift (Xu et al. 2009 Eq. 35, who give 0.01-0.1; "
+    "shifting_coefficient": Param(COEFFICIENT, "-", "C of the particle shift (Xu et al. 2009 Eq. 35, who give 0.01-0.1; "
                                   "with stabiliser=shifting)", positive=True),
 }
 
@@ -90,7 +92,7 @@ SOLID_PARAMS = {
                         "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009; adaptive_kernel: 002_ Sec. 4, "
                         "with kernel=cubic_spline)",
                         choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
-    "artificial_stress_epsilon": Param(0.3, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
+    "artificial_stress_epsilon": Param(EPSILON, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
                                        "2001; with stabiliser=artificial_stress)", positive=True),
     **SHIFTING_PARAMS,
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "

@@ -9,8 +9,9 @@ The pair loops take ``Kernel.params``, a numba-friendly named tuple, and
 evaluate the kernel of a pair with ``pair_w(k, r, i, j)`` and
 ``pair_dw(k, r, i, j)``. A fixed kernel has one shape for all particles: its
 ``KernelParams`` (kind id, h, sigma_d) give W(r_ij). The adaptive kernel's are
-an ``AdaptiveKernelParams`` (with the dimension and the knots); numba compiles
-every pair loop once per type, so a fixed kernel's loops carry no test of it.
+an ``AdaptiveKernelParams`` (the cubic spline's, with the dimension and the
+knots); numba compiles every pair loop once per type, so a fixed kernel's loops
+carry no test of it, and ``w``/``dw`` given them are the cubic spline (a = 1).
 
 The adaptive cubic B-spline of 002_ (Sec. 4.1, Eq. 31; ``Kernel(...,
 adaptive=True)``, only for ``cubic_spline``) is the B-spline over the knots
@@ -47,10 +48,8 @@ from .particles import Field
 
 WENDLAND_C2 = 0
 CUBIC_SPLINE = 1
-ADAPTIVE_B_SPLINE = 2  # the cubic spline with a knot per particle (module docstring)
-KNOT_SUPPORT = 2.0  # b of 002_ Eq. 31: the support in units of h
-
 SUPPORT_FACTOR = 2.0  # support radius = SUPPORT_FACTOR * h for every kernel here
+KNOT_SUPPORT = SUPPORT_FACTOR  # b of 002_ Eq. 31, the outer knot: the support in units of h
 
 KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
 AdaptiveKernelParams = namedtuple("AdaptiveKernelParams", ("kind", "h", "sigma", "dim", "knot", "coefficients"))
@@ -78,14 +77,15 @@ class Kernel:
         self.fields = (KNOT, KNOT_COEFFICIENTS) if adaptive else ()
         self.support = SUPPORT_FACTOR * self.h
         self.sigma = normalisation(self.kind, self.h, dim)
-        self.params = KernelParams(self.kind, self.h, self.sigma)
+        self.fixed_params = KernelParams(self.kind, self.h, self.sigma)
+        self.params = self.fixed_params
 
     def bind(self, particles):
         """Point the pair loops' parameters at the knots of ``particles`` (owned and ghosts), after
         every rebuild of the halo; nothing to do for a fixed kernel."""
         if self.adaptive:
-            self.params = AdaptiveKernelParams(ADAPTIVE_B_SPLINE, self.h, self.sigma, self.dim,
-                                               particles.arrays["knot"], particles.arrays["knot_coefficients"])
+            self.params = AdaptiveKernelParams(*self.fixed_params, self.dim, particles.arrays["knot"],
+                                               particles.arrays["knot_coefficients"])
 
     def value(self, r):
         """W(r) for an array of distances (any shape)."""
@@ -98,7 +98,7 @@ class Kernel:
     def _on_array(self, r, derivative):
         r = np.asarray(r, dtype=float)
         out = np.empty(r.size)
-        _values(r.ravel(), KernelParams(self.kind, self.h, self.sigma), derivative, out)
+        _values(r.ravel(), self.fixed_params, derivative, out)
         return out.reshape(r.shape)
 
     def lattice_sum(self, dp):

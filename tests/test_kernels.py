@@ -77,7 +77,8 @@ def test_adaptive_b_spline_slope_and_the_peak_of_its_gradient(a):
 
 def test_a_pair_of_different_knots_weighs_the_same_from_both_sides():
     knots = np.array([0.2, 1.8])
-    k = AdaptiveKernelParams(2, 0.5, 0.0, 2, knots, np.array([knot_coefficients(a, 0.5, 2) for a in knots]))
+    k = AdaptiveKernelParams(*Kernel("cubic_spline", 0.5, 2).fixed_params, 2, knots,
+                             np.array([knot_coefficients(a, 0.5, 2) for a in knots]))
     for r in (0.1, 0.4, 0.8):
         mean = 0.5 * (knot_values([r], 0.5, 0.2, 2)[0] + knot_values([r], 0.5, 1.8, 2)[0])
         assert pair_w(k, r, 0, 1) == pair_w(k, r, 1, 0) == mean

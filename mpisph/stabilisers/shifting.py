@@ -36,13 +36,14 @@ from .. import surface
 from ..integrators.updates import max_speed
 from ..kernels import pair_dw
 from ..neighbours import pair_offset
-from ..particles import MOVING, is_wall
+from ..particles import CORE_FIELDS, MOVING, is_wall
 from ..schemes import SCHEMES
 from ..tensors import times_vector
 from .base import Stabiliser
 from .transport_velocity import kernel_gradient_sum
 
 COEFFICIENT = 0.04  # C of Xu et al. (2009), Eq. 35
+CORE_NAMES = {f.name for f in CORE_FIELDS}  # sent with the halo, refreshed by whatever changes them
 
 
 @njit(cache=True)
@@ -114,7 +115,7 @@ class ParticleShifting(Stabiliser):
         dr = ctx.workspace.get("shift", n, (pa.dim,))
         B = ctx.correction_matrices()
         shifts(n, ctx.start, ctx.nbr, ctx.xc, pa.mass, pa.rho, pa.kind, pa.surface, B, scale, ctx.kernel.params, dr)
-        ctx.refresh(self.carried)
+        ctx.refresh([name for name in self.carried if name not in CORE_NAMES])  # v, rho: current since the halo
         columns = [pa.arrays[name].reshape(pa.n, -1) for name in self.carried]
         corrections = [ctx.workspace.get("shift_" + name, n, (f.shape[1],)) for name, f in zip(self.carried, columns)]
         for f, correction in zip(columns, corrections):  # all from the fields before any is corrected
