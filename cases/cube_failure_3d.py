@@ -1,13 +1,14 @@
 """3D failure of a cohesive soil cube: a 2 m Drucker-Prager cube collapses under its own weight on a floor (000_ Sec. 5.3)."""
 
 from mpisph.case import Param
-from mpisph.soil import cube_on_floor, soil_params
+from mpisph.soil import cube_on_floor, scheme_params, soil_params
 
 PARAMS = {
     "edge": Param(2.0, "m", "edge length of the soil cube", positive=True),
     "floor": Param(5.0, "m", "side of the square floor the cube stands on", positive=True),
     "dp": Param(0.04, "m", "particle spacing (0.04 in the paper: 125000 particles)", positive=True),
     **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0),  # 000_ Table 2, as Sec. 5.2
+    **scheme_params(),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }

@@ -2,13 +2,14 @@
 
 from mpisph.case import Param
 from mpisph.kernels import KERNELS
-from mpisph.soil import block_on_floor, soil_params
+from mpisph.soil import block_on_floor, scheme_params, soil_params
 
 PARAMS = {
     "L": Param(4.0, "m", "length of the soil block", positive=True),
     "H": Param(2.0, "m", "height of the cut", positive=True),
     "dp": Param(0.025, "m", "particle spacing (002_ Table 4)", positive=True),
     **soil_params(rho0=1850.0, E=1.5e6, nu=0.2, cohesion=5.0e3, phi=20.0),  # 002_ Table 3
+    **scheme_params(alpha=1.0, beta=0.0),  # 002_ Table 4
     "kernel": Param("cubic_spline", "-", "smoothing kernel (002_: the cubic B-spline)", choices=tuple(KERNELS)),
     "h_factor": Param(1.5, "-", "smoothing length h = h_factor * dp (002_ Table 4: h = 1.5 dp)", positive=True),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),

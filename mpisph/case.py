@@ -6,6 +6,7 @@ which receives the validated parameters as attributes and returns a
 ``Case``. Every case also has the run parameters in ``RUN_PARAMS``.
 """
 
+import dataclasses
 import difflib
 import importlib.util
 from dataclasses import dataclass, field
@@ -38,6 +39,10 @@ class Param:
     @property
     def type(self):
         return type(self.default)
+
+    def with_default(self, default):
+        """The same parameter with another default (a case's own choice of a shared parameter)."""
+        return dataclasses.replace(self, default=default)
 
     def parse(self, name, text):
         """Convert command-line text to the parameter's type, or raise InputError."""

@@ -175,6 +175,14 @@ def walls_around(lo, hi, dp, layers, open_sides=()):
     return LatticePoints(lattice, keep=outside, normal=towards_box, estimate=lattice.size - inner)
 
 
+def depth_outside(lo, hi):
+    """The function of positions giving their distance to the box [lo, hi], along the normals of
+    ``walls_around``: the depth of its wall particles behind the wall surface (``Wall.distance``)."""
+    lo = np.asarray(lo, dtype=float)
+    hi = np.asarray(hi, dtype=float)
+    return lambda x: np.linalg.norm(np.clip(x, lo, hi) - x, axis=1)
+
+
 def box_walls(lo, hi, dp, layers, open_sides=()):
     """The arrays (positions, inward unit normals) of ``walls_around``."""
     walls = walls_around(lo, hi, dp, layers, open_sides)

@@ -13,7 +13,10 @@ large a time step it allows. It sees the step only through a ``StepContext``
     implicit_kick(ctx, dt)  when ``implicit``: after the explicit kick, the part of the
                         kick the scheme takes backward in time (integrators that support it)
     rates(ctx, dt)      per step, after the kick and the drift: the density rate
-                        drho/dt and whatever else the scheme integrates itself
+                        drho/dt and whatever else the scheme integrates itself, or the
+                        rates of its ``integrated_fields``, which the integrator advances
+    constrain(ctx)      after each update of the ``integrated_fields``: the scheme's
+                        constraint on them (002_: the stress scaled back to the yield surface)
 """
 
 import math
@@ -34,6 +37,8 @@ class Scheme:
     observable_names = ()  # its columns of diagnostics.csv
     options = {}  # the discretisation options a case may set (Case.scheme_options) and their defaults
     implicit = False  # takes part of the kick implicitly (implicit_kick)
+    integrated_fields = {}  # field: its rate field, which ``rates`` fills and the integrator advances
+    advances_in_rates = False  # ``rates(ctx, dt)`` advances a field by dt itself (the Riemann solids' stress)
 
     def __init__(self, case, kernel):
         self.material = case.material
@@ -84,6 +89,9 @@ class Scheme:
     def rates(self, ctx, dt):
         """Per step, after the kick and the drift: drho/dt, and any field the scheme integrates."""
         raise NotImplementedError
+
+    def constrain(self, ctx):
+        """After each update of the ``integrated_fields`` of the owned particles by the integrator."""
 
     def observables(self, pa, n):
         """{column: sum over the owned particles [0, n)} for ``observable_names``."""

@@ -3,16 +3,18 @@
 - ``riemann_fluid``: weakly compressible fluid, Riemann solver (000_ Sec. 3, 001_);
 - ``riemann_elastic``: elastic solid, Riemann SPH (000_ Sec. 3.1.2);
 - ``riemann_granular``: Drucker-Prager soil, Riemann SPH (000_ Sec. 3.1.3);
+- ``classic_granular``: Drucker-Prager soil, classic SPH with artificial viscosity (002_ Secs. 2-3);
 - ``mu_i``: dense granular flow, mu(I) rheology, weakly compressible grains (004_).
 """
 
 from .errors import InputError
+from .physics.classic_granular import ClassicGranular
 from .physics.drucker_prager import RiemannGranular
 from .physics.elastic import RiemannElastic
 from .physics.fluid import RiemannFluid
 from .physics.mu_i import MuIScheme
 
-SCHEMES = {c.name: c for c in (RiemannFluid, RiemannElastic, RiemannGranular, MuIScheme)}
+SCHEMES = {c.name: c for c in (RiemannFluid, RiemannElastic, RiemannGranular, ClassicGranular, MuIScheme)}
 
 
 def make_scheme(case, kernel):

@@ -1,7 +1,8 @@
 """A Drucker-Prager soil block resting on a floor, at rest under gravity.
 
-Shared by the granular cases (column collapse, cohesive cut, cube failure):
-the material parameters every such case exposes, and the Case of a block with
+Shared by the granular cases (column collapse, cohesive cut, vertical cut, cube
+failure): the material parameters every such case exposes, the choice of scheme
+(``scheme_params``), and the Case of a block with
 geostatic initial stress inside a tank of no-slip dummy walls: in 2D the
 block [0, L] x [0, H] against the back wall of a floor ``floor`` long, in 3D
 a cube standing in the middle of a square floor with a low rim.
@@ -10,7 +11,7 @@ a cube standing in the middle of a square floor with a low rim.
 import numpy as np
 
 from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall
-from .geometry import block, support_layers, walls_around
+from .geometry import block, depth_outside, support_layers, walls_around
 from .physics.drucker_prager import geostatic_stress
 
 
@@ -26,6 +27,29 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
         "g": Param(9.8, "m/s^2", "gravity", positive=True),
         **SOLID_PARAMS,
     }
+
+
+def scheme_params(alpha=1.0, beta=0.0):
+    """Typed parameters choosing the soil's scheme: the Riemann SPH of 000_ or the classic SPH of
+    002_ (with the artificial viscosity ``alpha``, ``beta`` of its Eq. 25 and its Morris walls)."""
+    return {
+        "scheme": Param("riemann_granular", "-", "riemann_granular: 000_ Sec. 3.1.3; classic_granular: 002_ "
+                        "Secs. 2-3 (artificial viscosity, stress scaling back, predictor-corrector, Morris walls)",
+                        choices=("riemann_granular", "classic_granular")),
+        "av_alpha": Param(alpha, "-", "alpha of the artificial viscosity (002_ Eq. 25; classic_granular)"),
+        "av_beta": Param(beta, "-", "beta of the artificial viscosity (002_ Eq. 25; classic_granular)"),
+        "chi_max": Param(1.5, "-", "chi_max of Morris's walls (002_ Eq. 34, 1.5-2; classic_granular)",
+                         positive=True),
+    }
+
+
+def scheme_choice(p):
+    """The keyword arguments of a soil ``Case`` for the scheme the parameters ``p`` choose: the
+    classic scheme with its options and 002_'s predictor-corrector, or the Riemann scheme."""
+    if p.scheme == "classic_granular":
+        return {"scheme": p.scheme, "integrator": "predictor_corrector",
+                "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, "chi_max": p.chi_max}}
+    return {"scheme": p.scheme}
 
 
 def block_on_floor(p, L, H, floor, name):
@@ -58,10 +82,11 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
         domain=(domain_lo, domain_hi),
         dp=p.dp,
         material=soil,
-        scheme="riemann_granular",
+        **scheme_choice(p),
         bodies=[Body(name, block(lo, hi, p.dp, f"the {name}"),
                      stress=lambda x: geostatic_stress(x, top, soil, p.g))],
-        walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)))],
+        walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)),
+                    distance=depth_outside(tank_lo, tank_hi))],
         gravity=gravity,
         stabilisers=p.stabiliser,
         u_ref=float(np.sqrt(2.0 * p.g * height)),

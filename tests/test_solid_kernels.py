@@ -39,7 +39,7 @@ def gradients(x, v, mass, rho, kind, B, start, nbr):
     """L of Eq. 23 of every particle, from the one-particle ``velocity_gradient``."""
     L = np.zeros((len(x), 3, 3))
     for i in range(len(x)):
-        velocity_gradient(i, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), B,
+        velocity_gradient(i, start, nbr, x, v, mass, rho, kind, np.zeros_like(x), np.zeros(0), 0.0, B,
                           KERNEL, L[i])
     return L
 

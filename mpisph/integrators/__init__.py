@@ -8,6 +8,7 @@ fields it needs itself.
 """
 
 from .position_verlet import PositionVerlet
+from .predictor_corrector import PredictorCorrector
 from .symplectic_verlet import SymplecticVerlet
 
-INTEGRATORS = {c.name: c for c in (PositionVerlet, SymplecticVerlet)}
+INTEGRATORS = {c.name: c for c in (PositionVerlet, SymplecticVerlet, PredictorCorrector)}

@@ -8,7 +8,8 @@
     4. second half   x += dt/2 v                                        (Eq. 41)
     5. rates         the scheme's drho/dt from the new velocities (and the
                      stress it integrates itself)
-    6. density       rho += dt/2 drho/dt
+    6. density       rho += dt/2 drho/dt; the scheme's ``integrated_fields`` (if
+                     any) by dt from the rates of step 5, then ``scheme.constrain``
 
 The density rate of step 5 serves the second half of this step and the first
 half of the next one.
@@ -18,7 +19,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..particles import Field
-from .updates import density_half, drift_half, kick
+from .updates import advance_integrated, density_half, drift_half, kick
 
 
 class PositionVerlet:
@@ -51,5 +52,6 @@ class PositionVerlet:
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
         # 5. rates from the new velocities (reads neighbours' density at n + 1/2)
         self.scheme.rates(ctx, dt)
-        # 6. second half: density
+        # 6. second half: density; the fields the scheme leaves to the integrator, and its constraint
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
+        advance_integrated(ctx, self.scheme, dt)

@@ -14,7 +14,8 @@ the order of the sub-steps of one time step.
                      and the ghosts get v again
     4. second half   x += dt/2 v
     5. rates         the scheme's drho/dt from the new velocities
-    6. density       rho += dt/2 drho/dt
+    6. density       rho += dt/2 drho/dt; the scheme's ``integrated_fields`` as
+                     in position_verlet.py
 
 The forces of the mu(I) scheme depend on the velocity (viscosity, artificial
 viscosity), so 004_ evaluates them at the midpoint with the predicted
@@ -34,7 +35,7 @@ import numpy as np
 
 from ..particles import Field
 from .position_verlet import PositionVerlet
-from .updates import density_half, drift_half, kick
+from .updates import advance_integrated, density_half, drift_half, kick
 
 
 class SymplecticVerlet(PositionVerlet):
@@ -71,5 +72,6 @@ class SymplecticVerlet(PositionVerlet):
         drift_half(n, pa.kind, pa.x, pa.v, pa.rho, pa.drho_dt, dt, False)
         # 5. rates from the new velocities
         self.scheme.rates(ctx, dt)
-        # 6. second half: density
+        # 6. second half: density; the fields the scheme leaves to the integrator, and its constraint
         density_half(n, pa.kind, pa.rho, pa.drho_dt, dt)
+        advance_integrated(ctx, self.scheme, dt)

@@ -1,4 +1,5 @@
-"""The numba updates of explicit integrators: half drifts, density half steps, the kick.
+"""The numba updates of explicit integrators: half drifts, density half steps, the kick, and a
+field advanced by its rate.
 
 Moving particles drift and are kicked; clamped particles (held in place)
 evolve their density like moving ones; wall particles never change.
@@ -59,3 +60,33 @@ def max_speed(n, kind, v):
         if s > best:
             best = s
     return best ** 0.5
+
+
+@njit(cache=True)
+def advance(n, kind, f, f0, rate, dt, moving_only):
+    """f = f0 + dt rate, row by row (2D arrays), for the moving particles, and the clamped ones
+    unless ``moving_only`` (positions and velocities move only with moving particles; densities
+    and stresses evolve on clamped ones too)."""
+    for i in range(n):
+        if is_wall(kind[i]) or (moving_only and kind[i] != MOVING):
+            continue
+        for c in range(f.shape[1]):
+            f[i, c] = f0[i, c] + dt * rate[i, c]
+
+
+def rows(a, n):
+    """The first n rows of a particle field as a 2D array (a column for a scalar field)."""
+    return a[:n].reshape(n, -1)
+
+
+def advance_integrated(ctx, scheme, dt):
+    """The scheme's ``integrated_fields`` of the owned particles advanced by dt from their
+    rates, then the scheme's constraint on them."""
+    if not scheme.integrated_fields:
+        return
+    pa = ctx.particles
+    n = pa.n_owned
+    for name, rate in scheme.integrated_fields.items():
+        f = rows(getattr(pa, name), n)
+        advance(n, pa.kind, f, f, rows(getattr(pa, rate), n), dt, False)
+    scheme.constrain(ctx)

@@ -114,8 +114,39 @@ def return_mapping(sig, alpha_phi, k_c, dev):
 
 
 @njit(cache=True)
-def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, diffusion, K, G, alpha_phi,
-                          alpha_psi, k_c, dt, stress, plastic_strain):
+def plastic_stress_rate(L, sig, dev, diffusion, i, K, G, alpha_phi, alpha_psi, k_c, rate):
+    """rate = the stress rate of 000_ Eq. 10 (002_ Eq. 28) of the 3 x 3 ``sig`` under the
+    velocity gradient ``L``, plus row i of the packed ``diffusion`` when it has rows; returns the
+    plastic multiplier rate (000_ Eq. 13, 002_ Eq. 29), 0 unless the stress is on the yield
+    surface and loading (module docstring). ``dev`` is left holding the deviator of ``sig``."""
+    i1, sqrt_j2 = _deviator(sig, dev)
+    tr_d = L[0, 0] + L[1, 1] + L[2, 2]
+    s_d = 0.0
+    for a in range(3):
+        for b in range(3):
+            d_ab = 0.5 * (L[a, b] + L[b, a])
+            s_d += dev[a, b] * d_ab
+    jaumann_rate(L, sig, G, rate)
+    with_diffusion = diffusion.shape[0] > 0
+    for a in range(3):
+        if with_diffusion:
+            for b in range(3):
+                rate[a, b] += diffusion[i, SYM3[a, b]]
+        rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
+    gamma_dot = 0.0
+    if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:
+        gamma_dot = (3.0 * alpha_phi * K * tr_d + G / sqrt_j2 * s_d) / (9.0 * alpha_phi * K * alpha_psi + G)
+    if gamma_dot > 0.0:
+        for a in range(3):
+            for b in range(3):
+                rate[a, b] -= gamma_dot * G / sqrt_j2 * dev[a, b]
+            rate[a, a] -= gamma_dot * 3.0 * K * alpha_psi
+    return max(gamma_dot, 0.0)
+
+
+@njit(cache=True)
+def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, diffusion,
+                          K, G, alpha_phi, alpha_psi, k_c, dt, stress, plastic_strain):
     """sigma += dt (Eq. 10 rate + diffusion), return mapping, accumulated plastic strain, with
     L of Eq. 23 from ``velocity_gradient`` particle by particle."""
     L = np.empty((3, 3))
@@ -125,33 +156,14 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, d
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L)
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, L)
         unpack_row(stress, i, sig)
-        i1, sqrt_j2 = _deviator(sig, dev)
-        tr_d = L[0, 0] + L[1, 1] + L[2, 2]
-        s_d = 0.0
-        for a in range(3):
-            for b in range(3):
-                d_ab = 0.5 * (L[a, b] + L[b, a])
-                s_d += dev[a, b] * d_ab
-        jaumann_rate(L, sig, G, rate)
-        for a in range(3):
-            for b in range(3):
-                rate[a, b] += diffusion[i, SYM3[a, b]]
-            rate[a, a] += (K - 2.0 * G / 3.0) * tr_d
-        gamma_dot = 0.0
-        if sqrt_j2 > 0.0 and alpha_phi * i1 + sqrt_j2 - k_c >= 0.0:
-            gamma_dot = (3.0 * alpha_phi * K * tr_d + G / sqrt_j2 * s_d) / (9.0 * alpha_phi * K * alpha_psi + G)
-        if gamma_dot > 0.0:
-            for a in range(3):
-                for b in range(3):
-                    rate[a, b] -= gamma_dot * G / sqrt_j2 * dev[a, b]
-                rate[a, a] -= gamma_dot * 3.0 * K * alpha_psi
+        gamma_dot = plastic_stress_rate(L, sig, dev, diffusion, i, K, G, alpha_phi, alpha_psi, k_c, rate)
         for a in range(3):
             for b in range(3):
                 sig[a, b] += dt * rate[a, b]
         ds = return_mapping(sig, alpha_phi, k_c, dev)
-        plastic_strain[i] += dt * max(gamma_dot, 0.0) / math.sqrt(3.0) + math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
+        plastic_strain[i] += dt * gamma_dot / math.sqrt(3.0) + math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
         for a in range(3):  # sig stays symmetric to the bit: every rate term is formed symmetrically
             for b in range(a, 3):
                 stress[i, SYM3[a, b]] = sig[a, b]

@@ -37,7 +37,8 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
 
 
 @njit(cache=True)
-def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, G, dt, shear):
+def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, G, dt,
+                        shear):
     """sigma^s += dt [2 G dev(D) + sigma^s W^T + W sigma^s] (Eqs. 7-8 with Eq. 10's rotation),
     with L of Eq. 23 from ``velocity_gradient`` particle by particle; both stresses packed."""
     L = np.empty((3, 3))
@@ -46,7 +47,7 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, B, k, G, 
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L)
+        velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, L)
         trace = L[0, 0] + L[1, 1] + L[2, 2]
         unpack_row(shear, i, s_i)
         jaumann_rate(L, s_i, G, rate)

@@ -62,7 +62,7 @@ from .fluid import density_summation
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
                        regularised_viscosity)
-from .walls import morris_relative_velocity
+from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
 
@@ -300,16 +300,13 @@ class MuIScheme(Scheme):
         self.params = self.material.params
         self.density_reinit = case.density_reinit
         self.lattice_sum = kernel.lattice_sum(case.dp)
-        missing = [w.name for w in case.walls if w.distance is None]
-        if missing:
-            raise InputError(f"scheme mu_i needs the distance of every wall particle to the wall surface "
-                             f"(Wall.distance), which wall {missing[0]!r} lacks")
+        require_wall_distances(case, self.name)
         self.fields = (
             Field("strain", ("sym",), np.float64, "strain-rate tensor eps, packed (tensors.py) [1/s]"),
             Field("gamma_dot", (), np.float64, "strain-rate modulus sqrt(2 eps:eps) [1/s]"),
             Field("eta", (), np.float64, "regularised viscosity [Pa s]"),
             Field("rho_s", (), np.float64, "grain density [kg/m^3]"),
-            Field("wall_distance", (), np.float64, "distance behind the wall surface (walls only) [m]"),
+            WALL_DISTANCE,
         )
         self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == MEAN_SECANT else ())
         if self.corrected:

@@ -74,17 +74,20 @@ from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity
-from .walls import wall_relative_velocity
+from .walls import morris_relative_velocity, wall_relative_velocity
 
 
 @njit(cache=True)
-def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L):
+def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, L):
     """L_i of 000_ Eq. 23 of the material particle i into the 3 x 3 ``L`` (zero third row and
     column in 2D). The stress updates call it particle by particle, so that no n x 3 x 3 array
     of gradients is ever stored.
 
     B_i is the same for every pair of i, so the sum runs uncorrected,
-    M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij, and L_i = M_i B_i^T.
+    M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij, and L_i = M_i B_i^T; with an empty ``B``
+    (``B.shape[0] == 0``) L_i = M_i, the plain gradient of 002_ Eqs. 26-27. A wall partner's
+    velocity is mirrored (``beta_max <= 0``) or Morris's (walls.py, 002_ Eq. 34, which reads
+    ``wall_distance``).
     """
     dim = xc.shape[1]
     m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
@@ -93,7 +96,10 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L):
         d0, d1, d2, r = pair_offset(xc, i, j)
         u0, u1, u2 = pair_difference(v, i, j)
         if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
-            u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+            if beta_max > 0.0:
+                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
+            else:
+                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
         f = -mass[j] / rho[j] * pair_dw(k, r, i, j) / r
         m00 += f * u0 * d0
         m01 += f * u0 * d1
@@ -106,8 +112,12 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, B, k, L):
         m22 += f * u2 * d2
     M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
     L[:, :] = 0.0
+    corrected = B.shape[0] > 0
     for a in range(dim):
         for b in range(dim):
+            if not corrected:
+                L[a, b] = M[a][b]
+                continue
             acc = 0.0
             for c in range(dim):
                 acc += M[a][c] * B[i, component(dim, b, c)]
@@ -250,6 +260,16 @@ def output_invariants(n, stress, v, von_mises, speed):
         speed[i] = np.sqrt(vv)
 
 
+def solid_output_fields(pa, n):
+    """Output-only fields of the owned particles of a scheme with a stress: von Mises, vertical
+    stress, speed."""
+    von_mises = np.empty(n)
+    speed = np.empty(n)
+    output_invariants(n, pa.stress, pa.v, von_mises, speed)
+    vertical = pa.dim - 1
+    return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical].copy(), "speed": speed}
+
+
 class RiemannStress(ForceTerm):
     """The momentum sum of 000_ Eqs. 17, 22, 25-26 (module docstring)."""
 
@@ -283,6 +303,7 @@ class SolidScheme(Scheme):
     """
 
     needs_surface = True
+    advances_in_rates = True  # update_stress
     acoustic_cfl = 0.4  # 000_ Eq. 38: c0 of Eq. 6 is below the P-wave speed of a solid
     state_fields = ("rho", "p", "stress")
     eta = -1.0
@@ -297,6 +318,7 @@ class SolidScheme(Scheme):
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
         self.gravity = case.gravity
+        self._no_distance = np.zeros(0)  # mirrored walls read no wall distance
 
     def forces(self):
         return (RiemannStress(self.material.c0, self.eta, self.corrected_shear_force),)
@@ -317,14 +339,11 @@ class SolidScheme(Scheme):
         self.update_stress(ctx, dt)
 
     def gradient_args(self, ctx):
-        """The arguments of ``velocity_gradient`` after i, for the stress updates."""
+        """The arguments of ``velocity_gradient`` after i, for the stress updates (mirrored walls,
+        the corrected gradient)."""
         pa = ctx.particles
-        return (ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, pa.B, ctx.kernel.params)
+        return (ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal, self._no_distance, 0.0, pa.B,
+                ctx.kernel.params)
 
     def derived_fields(self, pa, n):
-        """Output-only fields of the owned particles: von Mises, vertical stress, speed."""
-        von_mises = np.empty(n)
-        speed = np.empty(n)
-        output_invariants(n, pa.stress, pa.v, von_mises, speed)
-        vertical = pa.dim - 1
-        return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical].copy(), "speed": speed}
+        return solid_output_fields(pa, n)
