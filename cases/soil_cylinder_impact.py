@@ -30,8 +30,8 @@ PARAMS = {
        "scheme": scheme_params()["scheme"].with_default("classic_granular")},
     "kernel": Param("cubic_spline", "-", "smoothing kernel (002_: the cubic B-spline)", choices=tuple(KERNELS)),
     "h_factor": Param(1.5, "-", "smoothing length h = h_factor * dp (002_ Table 2: h = 1.5 dp)", positive=True),
-    "t_end": Param(0.005, "s", "simulated end time", positive=True),
-    "output_interval": Param(0.00025, "s", "simulated time between frames", positive=True),
+    "t_end": Param(0.01, "s", "simulated end time (the spread levels off by 5 ms)", positive=True),
+    "output_interval": Param(0.0005, "s", "simulated time between frames", positive=True),
 }
 
 
