@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall
+from mpisph.case import Body, Case, Fluid, Param, Wall, limiter_param
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -13,6 +13,7 @@ PARAMS = {
     "wall": Param("no_slip", "-", "tank wall condition", choices=("no_slip", "free_slip")),
     "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
+    "limiter": limiter_param("approaching"),
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }
@@ -32,6 +33,7 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("water", water, pressure=pressure)],
         walls=[Wall("tank", wall_x, wall_n, slip=p.wall == "free_slip")],
         gravity=(0.0, -p.g),

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param
+from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param, limiter_param
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -17,6 +17,7 @@ PARAMS = {
                         "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017)",
                         choices=("none", "tvf", "utvf", "shifting")),
     **SHIFTING_PARAMS,
+    "limiter": limiter_param("approaching"),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),
 }
@@ -34,6 +35,7 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=p.c0),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("drop", x, velocity, pressure)],
         density_reinit=p.density_reinit,
         stabilisers=p.stabiliser,

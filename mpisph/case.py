@@ -90,6 +90,13 @@ SHIFTING_PARAMS = {
                                   "with stabiliser=shifting)", positive=True),
 }
 
+def limiter_param(default):
+    """The parameter naming the pairs the Riemann dissipation limiter damps (the option ``limiter``
+    of the schemes riemann_fluid and riemann_granular), with the case's default."""
+    return Param(default, "-", "pairs the Riemann dissipation limiter damps (fluids: approaching, 001_ Eq. 6; "
+                 "soils: separating, as SPHinXsys; docs/REMEDIES.md)", choices=("approaching", "separating"))
+
+
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {

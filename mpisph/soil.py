@@ -10,7 +10,7 @@ a cube standing in the middle of a square floor with a low rim.
 
 import numpy as np
 
-from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall
+from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, limiter_param
 from .geometry import block, depth_outside, support_layers, walls_around
 from .physics.drucker_prager import geostatic_stress
 
@@ -30,8 +30,9 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
 
 
 def scheme_params(alpha=1.0, beta=0.0):
-    """Typed parameters choosing the soil's scheme: the Riemann SPH of 000_ or the classic SPH of
-    002_ (with the artificial viscosity ``alpha``, ``beta`` of its Eq. 25 and its Morris walls)."""
+    """Typed parameters choosing the soil's scheme: the Riemann SPH of 000_ (with the pairs its
+    limiter damps) or the classic SPH of 002_ (with the artificial viscosity ``alpha``, ``beta`` of
+    its Eq. 25 and its Morris walls)."""
     return {
         "scheme": Param("riemann_granular", "-", "riemann_granular: 000_ Sec. 3.1.3; classic_granular: 002_ "
                         "Secs. 2-3 (artificial viscosity, stress scaling back, predictor-corrector, Morris walls)",
@@ -40,6 +41,7 @@ def scheme_params(alpha=1.0, beta=0.0):
         "av_beta": Param(beta, "-", "beta of the artificial viscosity (002_ Eq. 25; classic_granular)"),
         "chi_max": Param(1.5, "-", "chi_max of Morris's walls (002_ Eq. 34, 1.5-2; classic_granular)",
                          positive=True),
+        "limiter": limiter_param("separating"),
     }
 
 
@@ -49,7 +51,7 @@ def scheme_choice(p):
     if p.scheme == "classic_granular":
         return {"scheme": p.scheme, "integrator": "predictor_corrector",
                 "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, "chi_max": p.chi_max}}
-    return {"scheme": p.scheme}
+    return {"scheme": p.scheme, "scheme_options": {"limiter": p.limiter}}
 
 
 def block_on_floor(p, L, H, floor, name):

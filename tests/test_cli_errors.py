@@ -148,8 +148,8 @@ def test_blow_up_names_step_time_rank_particle(tmp_path):
     ("stabilisers=p.stabiliser", 'stabilisers="tvf,artificial"',
      ["stabiliser must be none or one of", "'artificial'"]),
     ('scheme="riemann_fluid"', 'scheme="riemann_fluid", integrator="euler"', ["integrator must be one of"]),
-    ('scheme="riemann_fluid"', 'scheme="riemann_fluid", scheme_options={"alpha": 0.1}',
-     ["scheme riemann_fluid has no option 'alpha'"]),
+    ('scheme_options={"limiter": p.limiter}', 'scheme_options={"limiter": p.limiter, "alpha": 0.1}',
+     ["scheme riemann_fluid has no option 'alpha'", "it takes: limiter"]),
 ])
 def test_parts_that_do_not_exist_or_fit(tmp_path, old, new, fragments):
     """A case naming an unknown scheme, stabiliser, integrator or scheme option, or a scheme for

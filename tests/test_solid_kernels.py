@@ -87,7 +87,7 @@ def test_shear_force_is_the_adjoint_of_the_corrected_velocity_gradient():
     T = np.zeros((n, 2, 2))
     shear_force_tensor(n, kind, packed(shear), np.zeros(n), B, T)
     stress_acceleration(n, start, nbr, x, v, rho, np.zeros(n), T, mass, kind, np.zeros_like(x),
-                        0.0, -1.0, KERNEL, acc)
+                        0.0, -1.0, 1.0, KERNEL, acc)
     power = np.sum(mass[:, None] * v * acc)
     stress_power = np.sum(mass / rho * np.einsum("iab,iab->i", shear, L))
     assert abs(stress_power) > 1.0
@@ -109,7 +109,7 @@ def test_uncorrected_shear_force_from_the_stress_is_eq_25():
     stress = stress + stress.transpose(0, 2, 1)
     normal = np.zeros_like(x)
     normal[:, 1] = 1.0
-    args = (mass, kind, normal, 30.0, 40.0, KERNEL)
+    args = (mass, kind, normal, 30.0, 40.0, 1.0, KERNEL)
     on_the_fly, from_tensor = np.zeros((n, 2)), np.zeros((n, 2))
     stress_acceleration(n, start, nbr, x, v, rho, p, packed(stress), *args, on_the_fly)
     s = stress[:, :2, :2] + p[:, None, None] * np.eye(2)
@@ -195,7 +195,7 @@ def test_a_free_slip_wall_exerts_no_shear_traction():
         start, nbr = neighbour_lists(x, np.arange(n), kind, n, 2 * H, x.min(axis=0) - DP)
         acc = np.zeros((n, 2))
         stress_acceleration(n, start, nbr, x, np.zeros((n, 2)), rho, np.zeros(n), packed(stress), mass, kind,
-                            normal, 30.0, 40.0, KERNEL, acc)
+                            normal, 30.0, 40.0, 1.0, KERNEL, acc)
         along[name] = acc[0, 0]
     assert abs(along["no-slip"]) > 1.0
     assert abs(along["free-slip"]) < 1e-12 * abs(along["no-slip"])

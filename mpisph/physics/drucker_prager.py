@@ -35,6 +35,7 @@ from ..materials import DruckerPrager
 from ..neighbours import pair_distance
 from ..particles import Field, is_wall
 from ..tensors import SYM3, unpack_row
+from .fluid import limited_pairs_sign
 from .solid import SolidScheme, jaumann_rate, material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
@@ -183,10 +184,12 @@ def geostatic_stress(x, top, soil, g):
 
 class RiemannGranular(SolidScheme):
     """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
-    as printed (solid.py says why)."""
+    as printed (solid.py says why). Option ``limiter``: the pairs the limiter damps,
+    ``separating`` or ``approaching``."""
 
     name = "riemann_granular"
     materials = (DruckerPrager,)
+    options = {"limiter": "separating"}
     riemann_continuity = 1.0  # Eq. 16
     corrected_shear_force = False  # Eq. 25 as printed
     carried_fields = ("v", "rho", "stress")
@@ -196,6 +199,7 @@ class RiemannGranular(SolidScheme):
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
         self.eta = 20.0 * case.dim  # 000_ Sec. 3.1.3
+        self.damped = limited_pairs_sign(self)
         self.g = float(np.linalg.norm(case.gravity))
 
     def initial_density(self, pressure):

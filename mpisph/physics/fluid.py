@@ -30,6 +30,7 @@ WALL_SLIP). The viscous term uses v_i - v_w (no-slip) or its normal part
 
 from numba import njit
 
+from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw, pair_w
 from ..materials import Fluid
@@ -39,6 +40,17 @@ from ..scheme import Scheme
 from .walls import wall_relative_normal, wall_relative_velocity
 
 RIEMANN_ETA = 3.0
+# The pairs the dissipation limiter damps (the schemes' option ``limiter``): the sign of u_jump
+# that makes beta positive, beta = min(eta max(sign u_jump / c0, 0), 1).
+LIMITED_PAIRS = {"approaching": -1.0, "separating": 1.0}
+
+
+def limited_pairs_sign(scheme):
+    """The sign of LIMITED_PAIRS for the option ``limiter`` of ``scheme``; InputError if unknown."""
+    name = scheme.option("limiter")
+    if name not in LIMITED_PAIRS:
+        raise InputError(f"scheme {scheme.name}: limiter must be one of {', '.join(LIMITED_PAIRS)}, not {name!r}")
+    return LIMITED_PAIRS[name]
 
 
 @njit(cache=True)
@@ -60,8 +72,9 @@ def _wall_state(i, j, xc, rho, p, gravity):
 
 
 @njit(cache=True)
-def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity, c0, k, acc):
-    """acc += -2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6)."""
+def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, gravity, c0, damped, k, acc):
+    """acc += -2/rho_i sum_j V_j P* W'_ij e_ij (000_ Eq. 17, 001_ Eqs. 5-6), the limiter on the
+    pairs whose u_jump has the sign ``damped`` (LIMITED_PAIRS)."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
@@ -76,7 +89,7 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
-            beta = min(RIEMANN_ETA * max(-u_jump / c0, 0.0), 1.0)
+            beta = min(RIEMANN_ETA * max(damped * u_jump / c0, 0.0), 1.0)
             p_star = 0.5 * (p[i] + p_j) - 0.25 * beta * (rho[i] + rho_j) * c0 * u_jump
             f = -2.0 * mass[j] / rho[j] * p_star * pair_dw(k, r, i, j) / r
             a0 += f * d0
@@ -182,14 +195,15 @@ class RiemannPressure(ForceTerm):
 
     name = "riemann_pressure"
 
-    def __init__(self, c0, gravity):
+    def __init__(self, c0, gravity, damped):
         self.c0 = c0
         self.gravity = gravity
+        self.damped = damped
 
     def add(self, ctx, acc):
         pa = ctx.particles
         pressure_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.mass, pa.kind,
-                              pa.normal, self.gravity, self.c0, ctx.kernel.params, acc)
+                              pa.normal, self.gravity, self.c0, self.damped, ctx.kernel.params, acc)
 
 
 class RiemannFluid(Scheme):
@@ -197,16 +211,19 @@ class RiemannFluid(Scheme):
 
     Per configuration: the optional density reinitialisation (001_ Eq. 8) and
     the pressure from it; per step: the pressure from the density (the state),
-    and continuity (the rate).
+    and continuity (the rate). Option ``limiter``: the pairs the limiter damps,
+    ``approaching`` (001_ Eq. 6: U_l - U_r > 0) or ``separating``.
     """
 
     name = "riemann_fluid"
     materials = (Fluid,)
     state_fields = ("rho", "p")
     acoustic_cfl = 0.6  # 001_ Eq. 11
+    options = {"limiter": "approaching"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
+        self.damped = limited_pairs_sign(self)
         self.gravity = case.gravity
         self.density_reinit = case.density_reinit
         self.lattice_sum = kernel.lattice_sum(case.dp)
@@ -219,7 +236,7 @@ class RiemannFluid(Scheme):
         return self.material.viscosity / self.material.rho0
 
     def forces(self):
-        return (Viscosity(self.material.viscosity), RiemannPressure(self.material.c0, self.gravity))
+        return (Viscosity(self.material.viscosity), RiemannPressure(self.material.c0, self.gravity, self.damped))
 
     def configure(self, ctx):
         if self.density_reinit == "none":

@@ -188,9 +188,10 @@ def mirrored_tensor_times(T, k, p, dim, d0, d1, d2, normal, j):
 
 
 @njit(cache=True)
-def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0, eta, k, acc):
+def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0, eta, damped, k, acc):
     """acc += the stress part of dv/dt of the moving particles (module docstring); eta <= 0
-    means beta = 1.
+    means beta = 1, else the limiter acts on the pairs whose u_jump has the sign ``damped``
+    (fluid.LIMITED_PAIRS).
 
     The shear part takes T = s B from ``shear_force_tensor`` (corrected), or the packed
     stress itself, s = sigma + p I being formed on the fly (Eq. 25 as printed: no copy).
@@ -214,7 +215,7 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0,
                 q = i
                 mirror = kind[j] == WALL_SLIP
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
-            beta = 1.0 if eta <= 0.0 else min(eta * max(u_jump / c0, 0.0), 1.0)
+            beta = 1.0 if eta <= 0.0 else min(eta * max(damped * u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[q] - beta * 0.5 * (rho[i] + rho[q]) * c0 * u_jump
             f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
             if mirror:
@@ -275,9 +276,10 @@ class RiemannStress(ForceTerm):
 
     name = "riemann_stress"
 
-    def __init__(self, c0, eta, corrected):
+    def __init__(self, c0, eta, damped, corrected):
         self.c0 = c0
         self.eta = eta
+        self.damped = damped
         self.corrected = corrected
 
     def add(self, ctx, acc):
@@ -288,13 +290,14 @@ class RiemannStress(ForceTerm):
         else:
             T = pa.stress
         stress_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, T, pa.mass, pa.kind,
-                            pa.normal, self.c0, self.eta, ctx.kernel.params, acc)
+                            pa.normal, self.c0, self.eta, self.damped, ctx.kernel.params, acc)
 
 
 class SolidScheme(Scheme):
     """What elastic and granular schemes share; each subclass fills in its constitutive part.
 
-    A subclass sets ``eta`` (the momentum limiter, <= 0: beta = 1),
+    A subclass sets ``eta`` (the momentum limiter, <= 0: beta = 1; ``damped`` the sign of
+    fluid.LIMITED_PAIRS it acts on),
     ``riemann_continuity`` (1: Eq. 16, 0: Eq. 21) and ``corrected_shear_force``
     (B on the shear part of the momentum sum, module docstring), and provides
     ``state(ctx)`` (p and the total stress from the density or the stress) and
@@ -307,6 +310,7 @@ class SolidScheme(Scheme):
     acoustic_cfl = 0.4  # 000_ Eq. 38: c0 of Eq. 6 is below the P-wave speed of a solid
     state_fields = ("rho", "p", "stress")
     eta = -1.0
+    damped = 1.0
     riemann_continuity = 0.0
     corrected_shear_force = False
 
@@ -321,7 +325,7 @@ class SolidScheme(Scheme):
         self._no_distance = np.zeros(0)  # mirrored walls read no wall distance
 
     def forces(self):
-        return (RiemannStress(self.material.c0, self.eta, self.corrected_shear_force),)
+        return (RiemannStress(self.material.c0, self.eta, self.damped, self.corrected_shear_force),)
 
     def configure(self, ctx):
         """Correction matrices on the frozen positions (ghosts too when the momentum sum reads them)."""
