@@ -13,7 +13,7 @@ PARAMS = {
     "wall": Param("no_slip", "-", "tank wall condition", choices=("no_slip", "free_slip")),
     "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
-    "limiter": limiter_param("approaching"),
+    "limiter": limiter_param("separating"),
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }

@@ -17,7 +17,7 @@ PARAMS = {
                         "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017)",
                         choices=("none", "tvf", "utvf", "shifting")),
     **SHIFTING_PARAMS,
-    "limiter": limiter_param("approaching"),
+    "limiter": limiter_param("separating"),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),
 }

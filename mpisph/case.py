@@ -93,8 +93,8 @@ SHIFTING_PARAMS = {
 def limiter_param(default):
     """The parameter naming the pairs the Riemann dissipation limiter damps (the option ``limiter``
     of the schemes riemann_fluid and riemann_granular), with the case's default."""
-    return Param(default, "-", "pairs the Riemann dissipation limiter damps (fluids: approaching, 001_ Eq. 6; "
-                 "soils: separating, as SPHinXsys; docs/REMEDIES.md)", choices=("approaching", "separating"))
+    return Param(default, "-", "pairs the Riemann dissipation limiter damps (separating: the authors' code, "
+                 "physics/fluid.py; approaching: 000_'s text)", choices=("approaching", "separating"))
 
 
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:

@@ -14,6 +14,28 @@ def surge_front(frame, dp):
     return frame["x"][:, 0].max() + 0.5 * dp
 
 
+def front_speed(T, z, lo, hi):
+    """Least-squares slope dz/dT of a front over lo <= T <= hi."""
+    T, z = np.asarray(T), np.asarray(z)
+    inside = (T >= lo) & (T <= hi)
+    return np.polyfit(T[inside], z[inside], 1)[0]
+
+
+def time_offset(T, z, T_ref, z_ref, span=1.0, step=0.001):
+    """The shift dT within [-span, span] that best aligns the front z(T) with the reference points:
+    the least squares of z(T_ref + dT) - z_ref over the points inside the run."""
+    T_ref, z_ref = np.asarray(T_ref), np.asarray(z_ref)
+    best, offset = np.inf, 0.0
+    for dT in np.arange(-span, span + step / 2, step):
+        inside = (T_ref + dT >= T[0]) & (T_ref + dT <= T[-1])
+        if inside.sum() < 2:
+            continue
+        err = np.mean((np.interp(T_ref[inside] + dT, T, z) - z_ref[inside]) ** 2)
+        if err < best:
+            best, offset = err, dT
+    return offset
+
+
 def decay_rate(t, energy):
     """Least-squares slope of ln(energy) against t."""
     return np.polyfit(np.asarray(t), np.log(np.asarray(energy)), 1)[0]

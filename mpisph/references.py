@@ -51,6 +51,16 @@ GHIA_V = np.array([0, -.05906, -.07391, -.08864, -.10313, -.16914, -.22445, -.24
 KOSHIZUKA_T = np.array([0, .381, .769, 1.153, 1.537, 1.935, 2.323, 2.719, 3.096])
 KOSHIZUKA_Z = np.array([1, 1.111, 1.252, 1.505, 1.892, 2.241, 2.615, 3.003, 3.624])
 
+# Martin & Moyce (1952), Phil. Trans. R. Soc. A 244, run with n^2 = 2, a = 2.25 in: surge front
+# Z = z/a against T = t sqrt(2 g / a) (n^2 = 2: T = n t sqrt(g/a)), the points issue 13 quotes.
+MARTIN_MOYCE_T = np.array([1.219, 1.997, 2.547, 3.345])
+MARTIN_MOYCE_Z = np.array([1.474, 2.292, 2.995, 4.134])
+
+
+def martin_moyce_speed(lo=1.9, hi=3.1):
+    """dZ/dT of Martin & Moyce's front between T = lo and hi, the points joined by straight lines."""
+    return (np.interp(hi, MARTIN_MOYCE_T, MARTIN_MOYCE_Z) - np.interp(lo, MARTIN_MOYCE_T, MARTIN_MOYCE_Z)) / (hi - lo)
+
 # Rotating square patch (000_ Eq. 44): centre pressure over rho omega^2 L^2.
 ROTATING_SQUARE_CENTRE_PRESSURE = -0.147343
 

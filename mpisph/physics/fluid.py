@@ -7,15 +7,30 @@ rho_R c_R):
 
     U*  = (U_l + U_r)/2 + (p_l - p_r) / (2 rho_bar c)
     P*  = (p_l + p_r)/2 + beta rho_bar c (U_l - U_r) / 2
-    beta = min(eta max((U_l - U_r)/c, 0), 1),   eta = 3
+    beta = min(eta max(u_jump/c, 0), 1),   eta = 3
 
 In mpisph's sign convention (e_ij from j to i, see kernels.py) the
-compression speed U_l - U_r equals -u_jump with u_jump = (v_i - v_j).e_ij.
-Continuity (000_ Eq. 16 / 001_ Eq. 3) and pressure acceleration
-(000_ Eq. 17) then read
+compression speed U_l - U_r (U = velocity along the axis from i to j, 000_
+Eq. 19) equals -u_jump with u_jump = (v_i - v_j).e_ij, so the dissipative
+part of P* is -beta rho_bar c u_jump / 2: its pair power,
+beta rho_bar c m_i m_j u_jump^2 W'_ij / (rho_i rho_j), is never positive,
+whichever pairs beta selects. Continuity (000_ Eq. 16 / 001_ Eq. 3) and
+pressure acceleration (000_ Eq. 17) then read
 
     drho_i/dt = rho_i sum_j V_j [u_jump + (p_i - p_j)/(rho_bar c)] W'_ij
     dv_i/dt   = -2/rho_i sum_j V_j P* W'_ij e_ij
+
+The limiter acts on separating pairs (u_jump > 0), the one rule for fluids
+and granular materials (solid.py): it is what the authors' code, SPHinXsys,
+does in the density relaxation of its fluid and plastic-continuum steps
+(``DissipativePJump(u_jump) = rho0 c0 u_jump limiter(max(u_jump, 0))``,
+u_jump = (v_i - v_j).e_ij, e_ij from j to i), and what 001_ Eq. 6 gives with
+its U_l = v_i.e_ij. 000_'s text (a compression wave, U_L >= U_R, with
+U_L = -v_i.e_ij) would damp approaching pairs instead; the scheme option
+``limiter = approaching`` runs that reading. Energy cannot decide between them
+(both dissipate); on the drop and the dam break's early front they differ by
+less than 1 %, on its late speed by 2 % (docs/REMEDIES.md,
+scripts/limiter_study.py).
 
 and the viscous acceleration is 001_ Eq. 7,
 2/rho_i sum_j V_j mu v_ij / (r_ij + 0.01 h) W'_ij.
@@ -212,14 +227,14 @@ class RiemannFluid(Scheme):
     Per configuration: the optional density reinitialisation (001_ Eq. 8) and
     the pressure from it; per step: the pressure from the density (the state),
     and continuity (the rate). Option ``limiter``: the pairs the limiter damps,
-    ``approaching`` (001_ Eq. 6: U_l - U_r > 0) or ``separating``.
+    ``separating`` (the module docstring says why) or ``approaching``.
     """
 
     name = "riemann_fluid"
     materials = (Fluid,)
     state_fields = ("rho", "p")
     acoustic_cfl = 0.6  # 001_ Eq. 11
-    options = {"limiter": "approaching"}
+    options = {"limiter": "separating"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)

@@ -20,7 +20,7 @@ beta = min(eta max(u_jump/c0, 0), 1) with eta = 20 d (000_ Sec. 3.1.3), which
 damps pairs that move apart.
 
 That sign is the second deliberate difference from the paper's text, and it
-follows the paper's own code. Eq. 20 as printed, min{eta max[(P_L + P_R)
+follows the paper's own code; fluids take the same rule (fluid.py). Eq. 20 as printed, min{eta max[(P_L + P_R)
 (U_L - U_R)/(rho_L c_L + rho_R c_R), 0], 1}, is not dimensionless, and its
 text ("a compression wave, U_L >= U_R", said of fluids) would damp
 approaching pairs. SPHinXsys, which the paper cites for its code, damps
