@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param
+from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param, limiter_param
 from mpisph.geometry import box
 
 PARAMS = {
@@ -16,6 +16,7 @@ PARAMS = {
     "stabiliser": Param("tvf_limited", "-", "particle regularisation (001_ Eq. 16; tvf, utvf: 000_ Eqs. 30-37; "
                         "shifting: Xu et al. 2009)", choices=("none", "tvf_limited", "tvf", "utvf", "shifting")),
     **SHIFTING_PARAMS,
+    "limiter": limiter_param("separating"),
     "jitter": Param(0.2, "dp", "amplitude of a seeded random perturbation of the initial lattice"),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
@@ -42,6 +43,7 @@ def setup(p):
         dp=dp,
         material=Fluid(rho0=p.rho0, c0=p.c0, viscosity=p.rho0 * p.U / p.Re),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("fluid", x, velocity, pressure)],
         periodic=(True, True),
         density_reinit=p.density_reinit,

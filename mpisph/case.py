@@ -94,7 +94,8 @@ def limiter_param(default):
     """The parameter naming the pairs the Riemann dissipation limiter damps (the option ``limiter``
     of the schemes riemann_fluid and riemann_granular), with the case's default."""
     return Param(default, "-", "pairs the Riemann dissipation limiter damps (separating: the authors' code, "
-                 "physics/fluid.py; approaching: 000_'s text)", choices=("approaching", "separating"))
+                 "physics/fluid.py; approaching: 000_'s text; none: no dissipation in the momentum)",
+                 choices=("approaching", "separating", "none"))
 
 
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:

@@ -27,7 +27,8 @@ does in the density relaxation of its fluid and plastic-continuum steps
 u_jump = (v_i - v_j).e_ij, e_ij from j to i), and what 001_ Eq. 6 gives with
 its U_l = v_i.e_ij. 000_'s text (a compression wave, U_L >= U_R, with
 U_L = -v_i.e_ij) would damp approaching pairs instead; the scheme option
-``limiter = approaching`` runs that reading. Energy cannot decide between them
+``limiter = approaching`` runs that reading, ``limiter = none`` leaves out the
+dissipation of the momentum (SPHinXsys's "NoRiemann" density relaxation). Energy cannot decide between them
 (both dissipate); on the drop and the dam break's early front they differ by
 less than 1 %, on its late speed by 2 % (docs/REMEDIES.md,
 scripts/limiter_study.py).
@@ -56,8 +57,8 @@ from .walls import wall_relative_normal, wall_relative_velocity
 
 RIEMANN_ETA = 3.0
 # The pairs the dissipation limiter damps (the schemes' option ``limiter``): the sign of u_jump
-# that makes beta positive, beta = min(eta max(sign u_jump / c0, 0), 1).
-LIMITED_PAIRS = {"approaching": -1.0, "separating": 1.0}
+# that makes beta positive, beta = min(eta max(sign u_jump / c0, 0), 1); none: beta = 0.
+LIMITED_PAIRS = {"approaching": -1.0, "separating": 1.0, "none": 0.0}
 
 
 def limited_pairs_sign(scheme):
