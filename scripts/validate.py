@@ -181,7 +181,7 @@ def dam_break(ranks):
     ax[0].plot(references.KOSHIZUKA_T, references.KOSHIZUKA_Z, "ks", label="Koshizuka & Oka 1996")
     ax[0].plot(references.MARTIN_MOYCE_T, references.MARTIN_MOYCE_Z, "k^", label="Martin & Moyce 1952")
     ax[0].plot(T, z, "-o", ms=3, label="mpisph dp = 0.02 L")
-    ax[0].plot(T - offset, z, ":", label=f"mpisph, T - {offset:.2f}")
+    ax[0].plot(T - offset, z, ":", label=f"mpisph, T {-offset:+.2f}")
     ax[0].set_xlabel("T = t sqrt(2g/L)")
     ax[0].set_ylabel("front z/L")
     ax[0].legend()
