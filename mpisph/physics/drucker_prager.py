@@ -114,7 +114,7 @@ def return_mapping(sig, alpha_phi, k_c, dev):
     return (1.0 - scale) * math.sqrt(2.0) * sqrt_j2
 
 
-@njit(cache=True)
+@njit(inline="always")
 def plastic_stress_rate(L, sig, dev, diffusion, i, K, G, alpha_phi, alpha_psi, k_c, rate):
     """rate = the stress rate of 000_ Eq. 10 (002_ Eq. 28) of the 3 x 3 ``sig`` under the
     velocity gradient ``L``, plus row i of the packed ``diffusion`` when it has rows; returns the
