@@ -78,6 +78,8 @@ RUN_PARAMS = {
     "h_factor": Param(1.3, "-", "smoothing length h = h_factor * dp", positive=True),
     "time_stepping": Param("dual", "-", "dual: 001_ Eqs. 9-11; single: 000_ Eq. 38",
                            choices=("dual", "single")),
+    "max_time_step": Param(0.0, "s", "upper bound of the time step, 0: none (002_ steps at 1e-6 s and 5e-5 s "
+                           "in its Tables 2 and 4)"),
     "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean work per rank - 1 exceeds this "
                                  "(work: neighbour pairs)", positive=True),
     "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",
@@ -281,9 +283,11 @@ def describe(module):
 
 
 def resolve_params(module, overrides, base=None):
-    """Defaults (or ``base``), then ``overrides`` {name: text}; returns {name: value}."""
+    """Defaults, then ``base`` (the values of an earlier run: a restart), then ``overrides``
+    {name: text}; returns {name: value}. A parameter newer than ``base`` takes its default."""
     params = all_params(module)
-    values = {k: p.default for k, p in params.items()} if base is None else dict(base)
+    values = {k: p.default for k, p in params.items()}
+    values.update(base or {})
     for name, text in overrides.items():
         if name not in params:
             close = difflib.get_close_matches(name, list(params), n=1)

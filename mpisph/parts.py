@@ -65,5 +65,5 @@ def make_parts(case, params):
     terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces)
     forces = Forces(terms)
     integrator = INTEGRATORS[case.integrator](scheme, forces)
-    criteria = TimeStepCriteria(params["time_stepping"], kernel.h, case.u_ref)
+    criteria = TimeStepCriteria(params["time_stepping"], kernel.h, case.u_ref, params["max_time_step"])
     return Parts(kernel, scheme, forces, stabilisers, integrator, criteria)

@@ -8,6 +8,8 @@ criterion the configuration is rebuilt every step of dt = 0.4 h / (c0 + |v|max)
 (000_ Eq. 38). A scheme's own limit (``Scheme.time_step_limit``: a viscous or
 force criterion) bounds the time step; with dual criteria the configuration
 is still kept for an advection step, over several of the smaller time steps.
+The run parameter ``max_time_step`` (when positive) bounds the time step too,
+for a run at a paper's fixed step below the CFL limit.
 
 Every limit decreases with |v|max, and rounding is monotone, so the minimum of
 the ranks' limits equals the limit of the largest speed to the bit.
@@ -23,19 +25,20 @@ CFL_SINGLE = 0.4
 
 class TimeStepCriteria:
     """The limits of one run: ``single`` or ``dual`` stepping, smoothing length ``h``, reference
-    speed ``u_ref`` of 001_ Eq. 10."""
+    speed ``u_ref`` of 001_ Eq. 10, the largest time step ``max_dt`` (0: none)."""
 
-    def __init__(self, time_stepping, h, u_ref):
+    def __init__(self, time_stepping, h, u_ref, max_dt=0.0):
         self.single = time_stepping == "single"
         self.h = h
         self.u_ref = u_ref
+        self.max_dt = max_dt if max_dt > 0.0 else np.inf
 
     def local_limits(self, ctx, scheme):
         """[time step, advection step] this rank allows at the current state."""
         pa = ctx.particles
         vmax = max_speed(pa.n_owned, pa.kind, pa.v)
         c0, h = scheme.sound_speed, self.h
-        extra = scheme.time_step_limit(ctx)
+        extra = min(scheme.time_step_limit(ctx), self.max_dt)
         if self.single:
             dt = min(CFL_SINGLE * h / (c0 + vmax), extra)
             return np.array([dt, dt])
