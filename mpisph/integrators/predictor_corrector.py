@@ -32,7 +32,6 @@ class PredictorCorrector(PositionVerlet):
     """One time step of a scheme and its force terms (module docstring)."""
 
     name = "predictor_corrector"
-    fields = PositionVerlet.fields
 
     def __init__(self, scheme, forces):
         super().__init__(scheme, forces)
