@@ -45,9 +45,9 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import SYM3, unpack_row
-from .drucker_prager import plastic_stress_rate, return_mapping
+from .drucker_prager import PLASTIC_STRAIN, plastic_stress_rate, return_mapping
 from .mu_i import continuity
-from .solid import material_pressure, solid_output_fields, tensor_times, velocity_gradient
+from .solid import STRESS, material_pressure, solid_output_fields, tensor_times, velocity_gradient
 from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
 
 MU_EPSILON = 0.01  # the 0.01 h^2 of Eq. 25's mu_ij
@@ -166,9 +166,9 @@ class ClassicGranular(Scheme):
     carried_fields = ("v", "rho", "stress")
     integrated_fields = {"stress": "stress_rate", "plastic_strain": "plastic_rate"}
     fields = (
-        Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]"),
+        STRESS,
         Field("stress_rate", (6,), np.float64, "Jaumann stress rate of 002_ Eq. 28, packed [Pa/s]"),
-        Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),
+        PLASTIC_STRAIN,
         Field("plastic_rate", (), np.float64, "rate of the accumulated plastic strain [1/s]"),
         WALL_DISTANCE,
     )

@@ -39,6 +39,7 @@ from .fluid import limited_pairs_sign
 from .solid import SolidScheme, jaumann_rate, material_pressure, velocity_gradient
 
 DIFFUSION_ZETA = 0.1
+PLASTIC_STRAIN = Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]")
 
 
 @njit(cache=True)
@@ -193,8 +194,7 @@ class RiemannGranular(SolidScheme):
     riemann_continuity = 1.0  # Eq. 16
     corrected_shear_force = False  # Eq. 25 as printed
     carried_fields = ("v", "rho", "stress")
-    fields = SolidScheme.base_fields + (
-        Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]"),)
+    fields = SolidScheme.base_fields + (PLASTIC_STRAIN,)
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)

@@ -77,6 +77,9 @@ from .fluid import continuity
 from .walls import morris_relative_velocity, wall_relative_velocity
 
 
+STRESS = Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]")
+
+
 @njit(cache=True)
 def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, B, k, L):
     """L_i of 000_ Eq. 23 of the material particle i into the 3 x 3 ``L`` (zero third row and
@@ -315,7 +318,7 @@ class SolidScheme(Scheme):
     corrected_shear_force = False
 
     base_fields = (
-        Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]"),
+        STRESS,
         Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
     )
 
