@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param, limiter_param
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
+                         limiter_param)
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -13,10 +14,9 @@ PARAMS = {
     "c0": Param(1000.0, "m/s", "artificial sound speed (10 A0 R)", positive=True),
     "density_reinit": Param("none", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
-    "stabiliser": Param("none", "-", "particle regularisation: tvf on inner particles, utvf on all "
-                        "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017)",
-                        choices=("none", "tvf", "utvf", "shifting")),
+    "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
+    **ARTIFICIAL_STRESS_PARAMS,
     "limiter": limiter_param("separating"),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),

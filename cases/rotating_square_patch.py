@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param,
+                         fluid_stabiliser_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -15,10 +16,9 @@ PARAMS = {
     "series_terms": Param(40, "-", "odd terms per index in the pressure series", positive=True),
     "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
-    "stabiliser": Param("none", "-", "particle regularisation: tvf on inner particles, utvf on all "
-                        "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017)",
-                        choices=("none", "tvf", "utvf", "shifting")),
+    "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
+    **ARTIFICIAL_STRESS_PARAMS,
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }

@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import SHIFTING_PARAMS, Body, Case, Fluid, Param, limiter_param
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
+                         limiter_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -13,9 +14,9 @@ PARAMS = {
     "c0": Param(10.0, "m/s", "artificial sound speed (10 U)", positive=True),
     "density_reinit": Param("inner", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "inner")),
-    "stabiliser": Param("tvf_limited", "-", "particle regularisation (001_ Eq. 16; tvf, utvf: 000_ Eqs. 30-37; "
-                        "shifting: Xu et al. 2009)", choices=("none", "tvf_limited", "tvf", "utvf", "shifting")),
+    "stabiliser": fluid_stabiliser_param("tvf_limited", also={"tvf_limited": "001_ Eq. 16"}),
     **SHIFTING_PARAMS,
+    **ARTIFICIAL_STRESS_PARAMS,
     "limiter": limiter_param("separating"),
     "jitter": Param(0.2, "dp", "amplitude of a seeded random perturbation of the initial lattice"),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),

@@ -92,6 +92,24 @@ SHIFTING_PARAMS = {
                                   "with stabiliser=shifting)", positive=True),
 }
 
+# Every case that offers the stabiliser ``artificial_stress`` exposes this.
+ARTIFICIAL_STRESS_PARAMS = {
+    "artificial_stress_epsilon": Param(EPSILON, "-", "epsilon of the artificial stress (Monaghan 2000; Gray, "
+                                       "Monaghan & Swift 2001; with stabiliser=artificial_stress)", positive=True),
+}
+
+
+def fluid_stabiliser_param(default, also=None):
+    """The parameter naming the stabiliser of a fluid case, with the case's default and, in
+    ``also``, {name: source} of the stabilisers the case offers besides the free-surface ones; such
+    a case also exposes SHIFTING_PARAMS and ARTIFICIAL_STRESS_PARAMS."""
+    also = also or {}
+    return Param(default, "-", "particle regularisation: tvf on inner particles, utvf on all (000_ Eqs. 30-37); "
+                 "shifting (Xu et al. 2009, Khayyer et al. 2017); artificial_stress (Monaghan 2000)"
+                 + "".join(f"; {name} ({source})" for name, source in also.items()),
+                 choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress"))
+
+
 def limiter_param(default):
     """The parameter naming the pairs the Riemann dissipation limiter damps (the option ``limiter``
     of the schemes riemann_fluid and riemann_granular), with the case's default."""
@@ -107,8 +125,7 @@ SOLID_PARAMS = {
                         "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009; adaptive_kernel: 002_ Sec. 4, "
                         "with kernel=cubic_spline)",
                         choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
-    "artificial_stress_epsilon": Param(EPSILON, "-", "epsilon of the artificial stress (Gray, Monaghan & Swift "
-                                       "2001; with stabiliser=artificial_stress)", positive=True),
+    **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",

@@ -1,7 +1,7 @@
 """Monaghan's artificial stress (mpisph/stabilisers/artificial_stress.py): R from the principal
-tensions only, rotated back, the in-plane block in 2D; a repulsion between particles in tension
-and none in compression; no net force on a cloud (momentum conserved); the same bits on 1 and 2
-ranks."""
+tensions only, rotated back, the in-plane block in 2D; for a fluid from the pressure, as from the
+stress -p I; a repulsion between particles in tension and none in compression; no net force on a
+cloud (momentum conserved); the same bits on 1 and 2 ranks."""
 
 import numpy as np
 
@@ -10,7 +10,7 @@ from mpisph.kernels import Kernel, w
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL
 from mpisph.stabilisers.artificial_stress import (EPSILON, EXPONENT, artificial_stress_acceleration,
-                                                  artificial_stress_tensors)
+                                                  artificial_stress_tensors, pressure_artificial_stress_tensors)
 from mpisph.tensors import packed, unpacked
 from mpirun import mpisph
 
@@ -132,3 +132,32 @@ def test_a_solid_case_sets_epsilon():
     parts = make_parts(build_case(module, values), values)
     [term] = [t for t in parts.forces.terms if isinstance(t, ArtificialStressForce)]
     assert term.epsilon == 0.6 and term.dp == 0.2
+
+
+def test_a_fluid_takes_r_from_its_pressure_as_from_the_stress_minus_p_i():
+    p = np.array([-300.0, 0.0, 250.0, -1.0e-3])
+    kind = np.array([MOVING, MOVING, MOVING, WALL], np.int8)
+    rho = np.array([990.0, 1000.0, 1010.0, 1000.0])
+    for dim in (2, 3):
+        from_pressure, from_stress = np.empty((4, 6)), np.empty((4, 6))
+        pressure_artificial_stress_tensors(4, kind, p, rho, EPSILON, dim, from_pressure)
+        stress = -p[:, None, None] * np.eye(3)
+        artificial_stress_tensors(4, kind, packed(stress), rho, EPSILON, dim, from_stress)
+        np.testing.assert_allclose(from_pressure, from_stress, rtol=1e-14, atol=0.0)
+        R = unpacked(from_pressure, 3)
+        expected = np.zeros((3, 3))
+        expected[:dim, :dim] = EPSILON * p[0] / rho[0] ** 2 * np.eye(dim)
+        np.testing.assert_allclose(R[0], expected, rtol=1e-14)
+        assert not R[1:].any()  # no tension, compression, a wall
+
+
+def test_a_fluid_case_takes_the_artificial_stress_from_the_pressure():
+    from mpisph.case import build_case, load_case_module, resolve_params
+    from mpisph.parts import make_parts
+    from mpisph.stabilisers.artificial_stress import ArtificialStressForce
+    module = load_case_module("rotating_square_patch")
+    values = resolve_params(module, {"dp": "0.1", "stabiliser": "artificial_stress",
+                                     "artificial_stress_epsilon": "0.2"})
+    parts = make_parts(build_case(module, values), values)
+    [term] = [t for t in parts.forces.terms if isinstance(t, ArtificialStressForce)]
+    assert term.from_pressure and term.ghost_fields == ("p",) and term.epsilon == 0.2

@@ -1,5 +1,5 @@
 """Monaghan's artificial stress: a short-range repulsion between particles in tension (Monaghan
-2000; Gray, Monaghan & Swift 2001, Eqs. 25-29 of the latter), for solids.
+2000; Gray, Monaghan & Swift 2001, Eqs. 25-29 of the latter), for solids and fluids.
 
 Each material particle gets a tensor R_i from its principal stresses: in the principal frame,
 R'_aa = -epsilon sigma'_aa / rho_i^2 where sigma'_aa > 0 (tension, positive in mpisph) and 0
@@ -15,6 +15,11 @@ In 2D (plane strain) the principal stresses are those of the in-plane block, as 
 have them; in 3D those of the whole tensor, from an eigen-decomposition per particle (beyond
 what the papers ran). A wall particle takes R of the particle it interacts with, mirrored in a
 free-slip wall, as the stress of solid.py's walls.
+
+A fluid's stress is -p I, so all its principal stresses are -p: in tension (p < 0)
+R_i = epsilon p_i / rho_i^2 I, else 0. That is Monaghan 2000's term for fluids, R_i =
+epsilon |p_i| / rho_i^2 added to the pressure term of particles under negative pressure
+(mpisph adds R to the acceleration with the opposite sign of a pressure, hence p, not |p|).
 """
 
 import numpy as np
@@ -23,6 +28,7 @@ from numba import njit
 from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw, pair_w, w
+from ..materials import Fluid
 from ..neighbours import pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..physics.solid import mirrored_tensor_times, tensor_times
@@ -100,6 +106,20 @@ def artificial_stress_tensors(n, kind, stress, rho, epsilon, dim, R):
 
 
 @njit(cache=True)
+def pressure_artificial_stress_tensors(n, kind, p, rho, epsilon, dim, R):
+    """R_i (packed) of the fluid particles in [0, n) from their pressure (module docstring); zero on
+    walls and under compression."""
+    for i in range(n):
+        for c in range(6):
+            R[i, c] = 0.0
+        if is_wall(kind[i]) or p[i] >= 0.0:
+            continue
+        r = epsilon * p[i] / (rho[i] * rho[i])
+        for a in range(dim):
+            R[i, component(3, a, a)] = r
+
+
+@njit(cache=True)
 def artificial_stress_acceleration(n, start, nbr, xc, mass, kind, normal, R, w_dp, exponent, k, acc):
     """acc += sum_j m_j f_ij^n (R_i + R_j) . grad_i W_ij for the moving particles in [0, n)."""
     dim = xc.shape[1]
@@ -127,22 +147,27 @@ def artificial_stress_acceleration(n, start, nbr, xc, mass, kind, normal, R, w_d
 
 
 class ArtificialStressForce(ForceTerm):
-    """The repulsion of the module docstring, evaluated at every step from the current stress."""
+    """The repulsion of the module docstring, evaluated at every step from the current stress, or,
+    for a fluid (``from_pressure``), the current pressure."""
 
     name = "artificial_stress"
-    ghost_fields = ("stress",)
 
-    def __init__(self, dp, epsilon=EPSILON, exponent=EXPONENT):
+    def __init__(self, dp, epsilon=EPSILON, exponent=EXPONENT, from_pressure=False):
         self.dp = dp
         self.epsilon = epsilon
         self.exponent = exponent
+        self.from_pressure = from_pressure
+        self.ghost_fields = ("p",) if from_pressure else ("stress",)
 
     def add(self, ctx, acc):
         pa = ctx.particles
-        if "stress" not in pa.arrays:
-            raise InputError("the artificial_stress stabiliser needs a solid scheme (a stress field)")
         R = ctx.workspace.get("artificial_stress", pa.n, (6,))
-        artificial_stress_tensors(pa.n, pa.kind, pa.stress, pa.rho, self.epsilon, pa.dim, R)
+        if self.from_pressure:
+            pressure_artificial_stress_tensors(pa.n, pa.kind, pa.p, pa.rho, self.epsilon, pa.dim, R)
+        elif "stress" in pa.arrays:
+            artificial_stress_tensors(pa.n, pa.kind, pa.stress, pa.rho, self.epsilon, pa.dim, R)
+        else:
+            raise InputError("the artificial_stress stabiliser needs a fluid or a solid scheme (a stress field)")
         w_dp = w(self.dp, ctx.kernel.params)
         artificial_stress_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.mass, pa.kind, pa.normal, R,
                                        w_dp, self.exponent, ctx.kernel.params, acc)
@@ -156,6 +181,7 @@ class ArtificialStress(Stabiliser):
     def __init__(self, case, params):
         self.dp = case.dp
         self.epsilon = params.get("artificial_stress_epsilon", EPSILON)
+        self.from_pressure = isinstance(case.material, Fluid)
 
     def forces(self):
-        return (ArtificialStressForce(self.dp, self.epsilon),)
+        return (ArtificialStressForce(self.dp, self.epsilon, from_pressure=self.from_pressure),)
