@@ -15,6 +15,9 @@ PARAMS = {
     "E": Param(2.0e6, "Pa", "Young's modulus", positive=True),
     "nu": Param(0.3975, "-", "Poisson's ratio", positive=True),
     "v_f": Param(0.05, "-", "initial tip speed over the sound speed (000_ Eq. 45)", positive=True),
+    "shear_force": Param("corrected", "-", "the shear part of the momentum sum: B-corrected (conserves kinetic "
+                         "+ strain energy, physics/solid.py) or as_printed (000_ Eq. 22)",
+                         choices=("corrected", "as_printed")),
     **SOLID_PARAMS,
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
@@ -53,6 +56,7 @@ def setup(p):
         dp=dp,
         material=material,
         scheme="riemann_elastic",
+        scheme_options={"shear_force": p.shear_force},
         bodies=[Body("beam", x, velocity=velocity, clamped=~free)],
         stabilisers=p.stabiliser,
         probes={"tip": tip},

@@ -30,7 +30,7 @@ def setup(p):
     # A perfect lattice in this perfectly symmetric flow is advected in lockstep by the
     # flow map: at the hyperbolic points it is stretched by exp(2 pi t), g = sum V grad W
     # stays zero by symmetry (no transport-velocity correction), while the kernel sum,
-    # hence density and pressure, rises (+11% at t = 0.1 for h = 1.3 dp), draining the
+    # hence density and pressure, rises (+10% at t = 0.1 for h = 1.3 dp), draining the
     # kinetic energy. A small seeded perturbation lets the particles rearrange instead.
     rng = np.random.default_rng(12345)
     x = np.mod(x + p.jitter * dp * rng.uniform(-1.0, 1.0, x.shape), 1.0)

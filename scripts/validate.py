@@ -146,28 +146,47 @@ def elliptical_drop_remedies(ranks, dp=0.01):
 
 
 def taylor_green(ranks):
-    rows, curves = [], []
-    cmds = []
-    for nx in (50, 100):
-        _, diag, cmd = run(f"taylor_green_{nx}", "taylor_green", ["--set", f"nx={nx}", "diagnostics_every=1"], ranks)
+    """001_ Sec. 4.1 to t = 5: the limited correction's decay rate within 3 %, the unlimited one's
+    overcorrection, and, not asserted, the limited one from a perfect lattice."""
+    ref = references.taylor_green_energy_rate(100.0)
+    rows, curves, cmds = [], [], []
+    runs = [(nx, stabiliser, jitter) for nx in (50, 100) for stabiliser, jitter in
+            (("tvf_limited", None), ("tvf", None), ("tvf_limited", 0.0))]
+    for nx, stabiliser, jitter in runs:
+        sets = [f"nx={nx}", f"stabiliser={stabiliser}", "diagnostics_every=1"]
+        sets += [] if jitter is None else [f"jitter={jitter:g}"]
+        name = f"taylor_green_{nx}_{stabiliser}" + ("" if jitter is None else "_lattice")
+        _, diag, cmd = run(name, "taylor_green", ["--set", *sets, "--t-end", "5", "--output-interval", "1"], ranks)
         cmds.append(cmd)
-        rate = measure.decay_rate(diag["t"], diag["kinetic_energy"])
-        ref = references.taylor_green_energy_rate(100.0)
-        rows.append((f"KE decay rate, {nx} x {nx}", f"{rate:.4f}", f"{ref:.4f}", f"{100 * (rate / ref - 1):+.1f}%", "5%"))
-        curves.append((nx, diag["t"], diag["kinetic_energy"] / 0.25))
-    fig, ax = plt.subplots(figsize=(6, 4))
-    t = np.linspace(0, 1, 50)
-    ax.semilogy(t, np.exp(references.taylor_green_energy_rate(100.0) * t), "k-", label="analytic")
-    for nx, tt, ke in curves:
-        ax.semilogy(tt, ke, label=f"mpisph {nx} x {nx}")
+        t, ke = diag["t"], diag["kinetic_energy"]
+        rate = measure.decay_rate(t, ke)
+        start = "a perfect lattice" if jitter == 0.0 else "the jittered lattice"
+        checked = stabiliser == "tvf_limited" and jitter is None
+        rows.append((f"KE decay rate over [0, 5], {nx} x {nx}, {stabiliser}, from {start}", f"{rate:.4f}", f"{ref:.4f}",
+                     f"{100 * (rate / ref - 1):+.1f}%", "3%" if checked else "-",
+                     *((abs(rate / ref - 1) <= 0.03,) if checked else ())))
+        ratio = ke[-1] / (ke[0] * np.exp(ref * t[-1]))
+        rows.append((f"KE(5) / analytic, {nx} x {nx}, {stabiliser}, from {start}", f"{ratio:.3f}", "1", "-", "-"))
+        curves.append((f"{nx} x {nx}, {stabiliser}" + (", lattice" if jitter == 0.0 else ""), t, ke / ke[0]))
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    tt = np.linspace(0, 5, 100)
+    ax.semilogy(tt, np.exp(ref * tt), "k-", label="analytic")
+    for label, t, ke in curves:
+        ax.semilogy(t, ke, "--" if "lattice" in label else "-", label=f"mpisph {label}")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("KE / KE0")
-    ax.legend()
-    note = ("The initial lattice is perturbed by a seeded 0.2 dp jitter: from a perfect lattice the "
-            "symmetric flow carries the particles in lockstep, stretches the lattice at the stagnation "
-            "points, and the kernel sum (density, pressure) rises there while sum V grad W stays zero, "
-            "so no transport-velocity correction can act; the kinetic energy then collapses after t ~ 0.1.")
-    return "Taylor-Green vortex (Re = 100)", "; ".join(cmds), rows, save(fig, "taylor_green.png"), note
+    ax.legend(fontsize=7)
+    note = ("The runs start from the lattice perturbed by a seeded 0.2 dp jitter (`jitter`, the case's "
+            "default), except the two from a perfect lattice, which issue 13 asks for: the symmetric flow "
+            "carries a perfect lattice in lockstep and stretches it at the hyperbolic points by exp(2 pi t), "
+            "1.9 at t = 0.1 and beyond the kernel support by t = 0.2. There the kernel sum, hence density "
+            "and pressure, rises (+10 % at a stretch of 1.9 for h = 1.3 dp) while sum V grad W stays zero by "
+            "symmetry, so no transport-velocity correction acts, and the kinetic energy falls to half the "
+            "analytic value by t = 0.2 (docs/REMEDIES.md has the runs that locate it). At 100 x 100 the "
+            "fitted rate is then within 3 % again, but the energy lost early is not recovered. Without the "
+            "limiter (001_ Eq. 14 alone, `tvf`) the energy ends above the analytic decay: the correction's "
+            "overcorrection at low speed, as in 001_ Fig. 3.")
+    return "Taylor-Green vortex (Re = 100, to t = 5)", "; ".join(cmds), rows, save(fig, "taylor_green.png"), note
 
 
 def dam_break(ranks):

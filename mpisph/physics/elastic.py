@@ -17,6 +17,7 @@ Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
 import numpy as np
 from numba import njit
 
+from ..errors import InputError
 from ..materials import ElasticSolid
 from ..particles import WALL, WALL_SLIP, Field, is_wall
 from ..tensors import SYM3, unpack_row
@@ -59,17 +60,27 @@ def shear_stress_update(n, start, nbr, xc, v, mass, rho, kind, normal, wall_dist
 
 
 class RiemannElastic(SolidScheme):
-    """Elastic solid: beta = 1, Eq. 21 continuity, the corrected shear force (solid.py says why)."""
+    """Elastic solid: beta = 1, Eq. 21 continuity, and by default the corrected shear force
+    (solid.py says why). Option ``shear_force``: ``corrected`` or ``as_printed`` (000_ Eq. 22)."""
 
     name = "riemann_elastic"
     materials = (ElasticSolid,)
     eta = -1.0  # beta = 1 in the Riemann pressure
     riemann_continuity = 0.0  # Eq. 21
-    corrected_shear_force = True  # solid.py: conserves kinetic + strain energy
+    options = {"shear_force": "corrected"}
+    SHEAR_FORCES = {"corrected": True, "as_printed": False}  # B on the shear part or not
     carried_fields = ("v", "rho", "shear_stress")
     fields = SolidScheme.base_fields + (
         Field("shear_stress", (6,), np.float64, "shear (deviatoric) stress, packed (tensors.py) [Pa]"),)
     observable_names = ("strain_energy",)
+
+    def __init__(self, case, kernel):
+        super().__init__(case, kernel)
+        form = self.option("shear_force")
+        if form not in self.SHEAR_FORCES:
+            raise InputError(f"scheme {self.name}: shear_force must be one of {', '.join(self.SHEAR_FORCES)}, "
+                             f"not {form!r}")
+        self.corrected_shear_force = self.SHEAR_FORCES[form]
 
     def initial_density(self, pressure):
         return self.material.rho0 + pressure / self.material.c0**2
