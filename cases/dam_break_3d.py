@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall
+from mpisph.case import Body, Case, Fluid, Param, Wall, limiter_param
 from mpisph.geometry import block, support_layers, walls_around
 
 PARAMS = {
@@ -12,6 +12,7 @@ PARAMS = {
     "g": Param(9.81, "m/s^2", "gravity", positive=True),
     "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
                             choices=("none", "free_surface")),
+    "limiter": limiter_param("separating"),
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }
@@ -30,6 +31,7 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("water", water, pressure=lambda x: p.rho0 * p.g * (H - x[:, 2]))],
         walls=[Wall("tank", tank)],
         gravity=(0.0, 0.0, -p.g),

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall
+from mpisph.case import Body, Case, Fluid, Param, Wall, limiter_param
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -11,6 +11,7 @@ PARAMS = {
     "dp": Param(0.02, "m", "particle spacing", positive=True),
     "rho0": Param(1000.0, "kg/m^3", "water density", positive=True),
     "g": Param(9.81, "m/s^2", "gravity", positive=True),
+    "limiter": limiter_param("separating"),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.5, "s", "simulated time between frames", positive=True),
 }
@@ -28,6 +29,7 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=10 * u),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("water", water, pressure=p.rho0 * p.g * (p.depth - water[:, 1]))],
         walls=[Wall("tank", wall_x, wall_n)],
         gravity=(0.0, -p.g),

@@ -3,7 +3,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall
+from mpisph.case import Body, Case, Fluid, Param, Wall, limiter_param
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -14,6 +14,7 @@ PARAMS = {
     "c0": Param(10.0, "m/s", "artificial sound speed (10 U)", positive=True),
     "stabiliser": Param("tvf_limited", "-", "particle regularisation (001_ Eq. 16)",
                         choices=("none", "tvf_limited")),
+    "limiter": limiter_param("separating"),
     "t_end": Param(30.0, "s", "simulated end time", positive=True),
     "output_interval": Param(1.0, "s", "simulated time between frames", positive=True),
 }
@@ -34,6 +35,7 @@ def setup(p):
         dp=dp,
         material=Fluid(rho0=p.rho0, c0=p.c0, viscosity=p.rho0 * p.U / p.Re),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("fluid", fluid)],
         walls=[Wall("cavity", wall_x, wall_n, velocity=wall_v)],
         density_reinit="inner",

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param,
-                         fluid_stabiliser_param)
+                         fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -19,6 +19,7 @@ PARAMS = {
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,
+    "limiter": limiter_param("separating"),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }
@@ -50,6 +51,7 @@ def setup(p):
         dp=p.dp,
         material=Fluid(rho0=p.rho0, c0=p.c0_factor * u),
         scheme="riemann_fluid",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("patch", x, velocity, pressure)],
         density_reinit=p.density_reinit,
         stabilisers=p.stabiliser,

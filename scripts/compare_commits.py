@@ -2,7 +2,7 @@
 final frames field by field: a refactoring that claims to leave the physics alone must end
 with the same bits. With ``--throughput``, compare their speed instead.
 
-    .venv/bin/python scripts/compare_commits.py [--base REF] [--ranks N] [--only RUN ...]
+    .venv/bin/python scripts/compare_commits.py [--base REF] [--ranks N] [--only RUN ...] [--current-set K=V ...]
     .venv/bin/python scripts/compare_commits.py --throughput [--base REF] [--repeat 3] [--cases CASE ...]
 
 The base commit's tree is exported with ``git archive`` into ``runs/compare/<sha>/`` (kept,
@@ -11,6 +11,9 @@ current code is the working tree. Each row is one run (a case, sometimes a varia
 reaches another code path) at a small size; the table gives, per field of the final frame
 (walls included, sorted by global id), ``same`` for equal bits or the largest absolute
 difference, and the step count of both runs. Exits 1 if any field differs or is missing.
+``--current-set K=V`` runs the current code with ``--set K=V`` on every case that has the
+parameter K: a deliberate change of a default since the base (the Riemann limiter's, issue 13)
+is set back so that the rest of the code is compared bit for bit.
 
 ``--throughput`` runs the cases of benchmarks/throughput.py (same sizes, same warm-up) on 1
 and 2 ranks with both trees, alternating base and current run by run, so that a drift in the
@@ -32,6 +35,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from _run import run_case  # noqa: E402
+from mpisph.case import load_case_module  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
 from mpisph.launch import mpirun_mpisph  # noqa: E402
 from throughput import BENCHMARKS  # noqa: E402
@@ -81,6 +85,12 @@ def run(tree, case, args, ranks, out):
     return read_frame(list_frames(out)[-1], walls=True)
 
 
+def current_args(case, args, sets):
+    """``args`` plus ``--set K=V`` for each K=V of ``sets`` that ``case`` takes."""
+    params = load_case_module(case).PARAMS
+    return [*args, *(w for kv in sets if kv.split("=", 1)[0] in params for w in ("--set", kv))]
+
+
 def compare(a, b):
     """{field: 'same' | largest absolute difference | 'missing in base/current'}."""
     out = {}
@@ -127,6 +137,8 @@ def main():
     ap.add_argument("--base", default=BASE, help=f"commit to compare against (default {BASE})")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--only", nargs="*", choices=list(RUNS), default=list(RUNS))
+    ap.add_argument("--current-set", nargs="*", default=[], metavar="K=V",
+                    help="parameters for the current code's runs, on the cases that take them")
     ap.add_argument("--throughput", action="store_true", help="compare speed, not bits")
     ap.add_argument("--repeat", type=int, default=3, help="with --throughput: runs per tree and rank count")
     ap.add_argument("--cases", nargs="*", choices=list(BENCHMARKS), default=list(BENCHMARKS),
@@ -136,7 +148,8 @@ def main():
     if a.throughput:
         throughput(sha, tree, a.repeat, a.cases)
         return
-    print(f"final frames at {sha} against the working tree, {a.ranks} ranks, walls included\n")
+    shown = f", the working tree with {' '.join(a.current_set)}" if a.current_set else ""
+    print(f"final frames at {sha} against the working tree, {a.ranks} ranks, walls included{shown}\n")
     print("| run | steps | fields with the same bits | fields that differ |")
     print("|---|---|---|---|")
     failed = False
@@ -144,7 +157,7 @@ def main():
         case, args = RUNS[name]
         with tempfile.TemporaryDirectory() as d:
             base = run(tree, case, args, a.ranks, Path(d) / "base")
-            current = run(ROOT, case, args, a.ranks, Path(d) / "current")
+            current = run(ROOT, case, current_args(case, args, a.current_set), a.ranks, Path(d) / "current")
         result = compare(base, current)
         same = [k for k, v in result.items() if v == "same"]
         differ = [f"{k} ({v})" for k, v in result.items() if v != "same"]

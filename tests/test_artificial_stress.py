@@ -4,6 +4,7 @@ stress -p I; a repulsion between particles in tension and none in compression; n
 cloud (momentum conserved); the same bits on 1 and 2 ranks."""
 
 import numpy as np
+import pytest
 
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel, w
@@ -122,18 +123,6 @@ def test_the_jacobi_eigen_decomposition_matches_numpy():
             np.testing.assert_allclose(V.T @ V, np.eye(dim), atol=1e-14)
 
 
-def test_a_solid_case_sets_epsilon():
-    from mpisph.case import build_case, load_case_module, resolve_params
-    from mpisph.parts import make_parts
-    from mpisph.stabilisers.artificial_stress import ArtificialStressForce
-    module = load_case_module("cohesive_failure_2d")
-    values = resolve_params(module, {"dp": "0.2", "stabiliser": "artificial_stress",
-                                     "artificial_stress_epsilon": "0.6"})
-    parts = make_parts(build_case(module, values), values)
-    [term] = [t for t in parts.forces.terms if isinstance(t, ArtificialStressForce)]
-    assert term.epsilon == 0.6 and term.dp == 0.2
-
-
 def test_a_fluid_takes_r_from_its_pressure_as_from_the_stress_minus_p_i():
     p = np.array([-300.0, 0.0, 250.0, -1.0e-3])
     kind = np.array([MOVING, MOVING, MOVING, WALL], np.int8)
@@ -151,13 +140,17 @@ def test_a_fluid_takes_r_from_its_pressure_as_from_the_stress_minus_p_i():
         assert not R[1:].any()  # no tension, compression, a wall
 
 
-def test_a_fluid_case_takes_the_artificial_stress_from_the_pressure():
+@pytest.mark.parametrize("case, dp, from_pressure", [("cohesive_failure_2d", 0.2, False),
+                                                     ("rotating_square_patch", 0.1, True)])
+def test_a_case_sets_epsilon_and_a_fluid_takes_r_from_its_pressure(case, dp, from_pressure):
     from mpisph.case import build_case, load_case_module, resolve_params
     from mpisph.parts import make_parts
     from mpisph.stabilisers.artificial_stress import ArtificialStressForce
-    module = load_case_module("rotating_square_patch")
-    values = resolve_params(module, {"dp": "0.1", "stabiliser": "artificial_stress",
-                                     "artificial_stress_epsilon": "0.2"})
+    module = load_case_module(case)
+    values = resolve_params(module, {"dp": str(dp), "stabiliser": "artificial_stress",
+                                     "artificial_stress_epsilon": "0.6"})
     parts = make_parts(build_case(module, values), values)
     [term] = [t for t in parts.forces.terms if isinstance(t, ArtificialStressForce)]
-    assert term.from_pressure and term.ghost_fields == ("p",) and term.epsilon == 0.2
+    assert term.epsilon == 0.6 and term.dp == dp
+    assert term.from_pressure == from_pressure
+    assert term.ghost_fields == (("p",) if from_pressure else ("stress",))
