@@ -76,6 +76,12 @@ def beam_period(L=0.2, H=0.02, rho0=1000.0, E=2.0e6, nu=0.3975, kL=1.875):
     return 2.0 * np.pi / np.sqrt(E * H**2 * k**4 / (12.0 * rho0 * (1.0 - nu**2)))
 
 
+# 000_ Table 1: the beam's first period T [s] at H/dp = 30 (L = 0.2 m, H = 0.02 m) by v_f, for the
+# paper's TVF, UTVF and artificial stress (SPH-AS, Gray et al. 2001); its analytical T is 0.254.
+BEAM_TABLE_1_V_F = (0.001, 0.01, 0.03, 0.05)
+BEAM_TABLE_1_PERIODS = {"tvf": (0.275, 0.277, 0.283, 0.284), "utvf": (0.274, 0.271, 0.271, 0.271),
+                        "artificial_stress": (0.273, 0.273, 0.275, 0.278)}
+
 # 004_ Table 1: constitutive parameters of the mu(I) law (friction angles in degrees, d in m).
 # Glass beads and 0.8 mm sand after GDR MiDi (2004); 0.4 mm sand (d = 0.32 mm in the collapses of
 # Lube et al. 2004) with I_0 from 004_ Sec. 2.1.
