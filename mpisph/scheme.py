@@ -53,6 +53,14 @@ class Scheme:
         """The value of option ``name``: the case's, else the default."""
         return self._options[name]
 
+    def option_choice(self, name, choices):
+        """The value of option ``name``, which must be one of ``choices`` (names, or a dict keyed by
+        them); InputError otherwise."""
+        value = self.option(name)
+        if value not in choices:
+            raise InputError(f"scheme {self.name}: {name} must be one of {', '.join(choices)}, not {value!r}")
+        return value
+
     def initial_density(self, pressure):
         """Density of the material particles that gives ``pressure``."""
         raise NotImplementedError

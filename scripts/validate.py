@@ -486,7 +486,7 @@ def oscillating_beam_table(ranks, h_over_dp=30, v_fs=references.BEAM_TABLE_1_V_F
                          "-"))
             rows.append((f"(kinetic + strain energy) at {diag['t'][-1]:.2f} s / initial, {label}, v_f = {v_f:g}",
                          f"{energy[-1] / energy[0]:.3f}", "1", f"{energy[-1] / energy[0] - 1:+.3f}", "-"))
-        ax.plot(v_fs, periods, "o-", label=f"mpisph {st}" + (", Eq. 22 as printed" if form == "as_printed" else ""))
+        ax.plot(v_fs, periods, "o-", label=f"mpisph {label}")
     for st, periods in references.BEAM_TABLE_1_PERIODS.items():
         ax.plot(references.BEAM_TABLE_1_V_F, periods, "s--", alpha=0.6, label=f"000_ Table 1, {st}")
     ax.axhline(T, color="k", lw=0.8, label="theory (Eq. 47)")

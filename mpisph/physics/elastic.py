@@ -17,7 +17,6 @@ Riemann dissipation) and the momentum's Riemann pressure takes beta = 1.
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
 from ..materials import ElasticSolid
 from ..particles import WALL, WALL_SLIP, Field, is_wall
 from ..tensors import SYM3, unpack_row
@@ -76,11 +75,7 @@ class RiemannElastic(SolidScheme):
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
-        form = self.option("shear_force")
-        if form not in self.SHEAR_FORCES:
-            raise InputError(f"scheme {self.name}: shear_force must be one of {', '.join(self.SHEAR_FORCES)}, "
-                             f"not {form!r}")
-        self.corrected_shear_force = self.SHEAR_FORCES[form]
+        self.corrected_shear_force = self.SHEAR_FORCES[self.option_choice("shear_force", self.SHEAR_FORCES)]
 
     def initial_density(self, pressure):
         return self.material.rho0 + pressure / self.material.c0**2

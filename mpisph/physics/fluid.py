@@ -46,7 +46,6 @@ WALL_SLIP). The viscous term uses v_i - v_w (no-slip) or its normal part
 
 from numba import njit
 
-from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw, pair_w
 from ..materials import Fluid
@@ -63,10 +62,7 @@ LIMITED_PAIRS = {"approaching": -1.0, "separating": 1.0, "none": 0.0}
 
 def limited_pairs_sign(scheme):
     """The sign of LIMITED_PAIRS for the option ``limiter`` of ``scheme``; InputError if unknown."""
-    name = scheme.option("limiter")
-    if name not in LIMITED_PAIRS:
-        raise InputError(f"scheme {scheme.name}: limiter must be one of {', '.join(LIMITED_PAIRS)}, not {name!r}")
-    return LIMITED_PAIRS[name]
+    return LIMITED_PAIRS[scheme.option_choice("limiter", LIMITED_PAIRS)]
 
 
 @njit(cache=True)

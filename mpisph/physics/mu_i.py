@@ -50,7 +50,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..materials import MuIGranular
@@ -284,17 +283,9 @@ class MuIScheme(Scheme):
         super().__init__(case, kernel)
         self.alpha = self.option("alpha")
         self.beta_max = self.option("beta_max")
-        if self.option("viscous_form") not in VISCOUS_FORMS:
-            raise InputError(f"scheme mu_i: viscous_form must be one of {', '.join(VISCOUS_FORMS)}, "
-                             f"not {self.option('viscous_form')!r}")
-        self.corrected = self.option("viscous_form") == "corrected_stress"
-        if self.option("viscous_step") not in VISCOUS_STEPS:
-            raise InputError(f"scheme mu_i: viscous_step must be one of {', '.join(VISCOUS_STEPS)}, "
-                             f"not {self.option('viscous_step')!r}")
-        if self.option("viscosity_mean") not in VISCOSITY_MEANS:
-            raise InputError(f"scheme mu_i: viscosity_mean must be one of {', '.join(VISCOSITY_MEANS)}, "
-                             f"not {self.option('viscosity_mean')!r}")
-        self.mean = VISCOSITY_MEANS.index(self.option("viscosity_mean"))
+        self.corrected = self.option_choice("viscous_form", VISCOUS_FORMS) == "corrected_stress"
+        self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
+        self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -314,7 +305,6 @@ class MuIScheme(Scheme):
                 Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
                 Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
             self.state_fields = ("p", "T_visc")
-        self.implicit = self.option("viscous_step") == "implicit"
         if self.implicit:
             self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
