@@ -442,6 +442,16 @@ def beam_panel(fig, ax, frame, title):
     fig.colorbar(sc, ax=ax)
 
 
+def beam_period_run(h_over_dp, v_f, stabiliser, shear_force, ranks):
+    """Diagnostics and command of a beam run to 0.32 s, past its first period (000_ Table 1); a run
+    that breaks up returns what it reached."""
+    _, diag, cmd = run(f"oscillating_beam_table_{h_over_dp}_{stabiliser}_{shear_force}_{v_f:g}", "oscillating_beam",
+                       ["--set", f"H_over_dp={h_over_dp}", f"v_f={v_f:g}", f"stabiliser={stabiliser}",
+                        f"shear_force={shear_force}", "--t-end", "0.32", "--output-interval", "0.04"], ranks,
+                       blow_up_ok=True)
+    return diag, cmd
+
+
 def oscillating_beam(ranks, h_over_dp=30):
     """Table 1 (first period at H/dp = 30), Figs. 11 and 13 (stabilisers at H/dp = 10, v_f = 0.05)."""
     T = references.beam_period()
@@ -449,12 +459,11 @@ def oscillating_beam(ranks, h_over_dp=30):
     stabilisers = ("utvf", "tvf", "none", "artificial_stress")
     fig, ax = plt.subplots(2 + len(stabilisers), 1, figsize=(10, 18))
     for v_f in (0.01, 0.05):
-        _, diag, cmd = run(f"oscillating_beam_{h_over_dp}_{v_f}", "oscillating_beam",
-                           ["--set", f"H_over_dp={h_over_dp}", "--set", f"v_f={v_f}", "--t-end", "0.32",
-                            "--output-interval", "0.04"], ranks)
+        diag, _ = beam_period_run(h_over_dp, v_f, "utvf", "corrected", ranks)
         period = measure.first_period(diag["t"], diag["tip_uy"])
         rows.append((f"first period, H/dp = {h_over_dp}, v_f = {v_f} [s]", f"{period:.4f}",
-                     f"{T:.4f} (paper, H/dp = 30: 0.271)", f"{100 * (period / T - 1):+.1f}%", "8%"))
+                     f"{T:.4f} (paper, H/dp = 30: 0.271)", f"{100 * (period / T - 1):+.1f}%", "8%",
+                     abs(period / T - 1) <= 0.08))
         ax[0].plot(diag["t"], diag["tip_uy"] / np.abs(diag["tip_uy"]).max(),
                    label=f"v_f = {v_f}, H/dp = {h_over_dp}")
     ax[0].axvline(T, color="k", ls="--", lw=0.8, label="theory T")
@@ -497,8 +506,8 @@ def oscillating_beam(ranks, h_over_dp=30):
     ax[1].legend(fontsize=8)
     image = save(fig, "oscillating_beam.png")
     note = ("Periods: first upward zero crossing of the tip deflection. The stabiliser rows come from the "
-            "command shown with `--set stabiliser=tvf`, `none` and `artificial_stress`; the period rows from "
-            f"the same case with `--set H_over_dp={h_over_dp} --set v_f=0.01|0.05 --t-end 0.32`. At an upward "
+            "command shown with `--set stabiliser=tvf`, `none` and `artificial_stress`; the period rows are "
+            "the UTVF runs of the next section. At an upward "
             "crossing the beam is straight, so the energy there compares the stabilisers at one phase: "
             "artificial stress does work that kinetic and strain energy do not hold, and between the "
             "crossings the sum swings with the deflection.")
@@ -519,11 +528,7 @@ def oscillating_beam_table(ranks, h_over_dp=30, v_fs=references.BEAM_TABLE_1_V_F
     for st, form, v_f_runs in runs:
         periods = []
         for v_f in v_f_runs:
-            name = f"oscillating_beam_table_{h_over_dp}_{st}_{form}_{v_f:g}"
-            _, diag, cmd = run(name, "oscillating_beam",
-                               ["--set", f"H_over_dp={h_over_dp}", f"v_f={v_f:g}", f"stabiliser={st}",
-                                f"shear_force={form}", "--t-end", "0.32", "--output-interval", "0.04"], ranks,
-                               blow_up_ok=True)
+            diag, cmd = beam_period_run(h_over_dp, v_f, st, form, ranks)
             cmds.append(cmd)
             period = measure.first_period(diag["t"], diag["tip_uy"])
             energy = diag["kinetic_energy"] + diag["strain_energy"]
