@@ -21,12 +21,31 @@ def validate(tmp_path, monkeypatch):
     return module
 
 
-def test_code_version_is_the_committed_trees_or_none(validate):
-    dirty = subprocess.run(["git", "status", "--porcelain", "--", "mpisph", "cases"], capture_output=True,
-                           text=True, cwd=ROOT, check=True).stdout.strip()
-    trees = subprocess.run(["git", "rev-parse", "HEAD:mpisph", "HEAD:cases"], capture_output=True, text=True,
-                           cwd=ROOT, check=True).stdout.split()
-    assert validate.code_version() == (None if dirty else trees)
+def test_code_version_follows_the_committed_solver_code(validate, tmp_path, monkeypatch):
+    """A tree of its own: the version is None while mpisph/ or cases/ has uncommitted changes, and
+    a commit there gives a new one; a change elsewhere leaves it."""
+    repo = tmp_path / "repo"
+    for part in ("mpisph", "cases", "docs"):
+        (repo / part).mkdir(parents=True)
+        (repo / part / "a.py").write_text("x = 1\n")
+
+    def commit():
+        for words in (["add", "-A"], ["-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "c"]):
+            subprocess.run(["git", *words], cwd=repo, check=True, capture_output=True)
+
+    subprocess.run(["git", "init", "-q"], cwd=repo, check=True)
+    commit()
+    monkeypatch.setattr(validate, "ROOT", repo)
+    first = validate.code_version()
+    assert first is not None and len(first) == 2
+    (repo / "docs" / "a.py").write_text("x = 2\n")
+    commit()
+    assert validate.code_version() == first
+    (repo / "cases" / "a.py").write_text("x = 2\n")
+    assert validate.code_version() is None
+    commit()
+    second = validate.code_version()
+    assert second is not None and second != first and second[0] == first[0]
 
 
 def test_reuse_reads_only_the_same_command(validate, tmp_path, capsys):
