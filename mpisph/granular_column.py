@@ -19,11 +19,10 @@ import math
 
 from .case import Body, Case, Front, MuIGranular, Param, Wall
 from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
-from .granular_flow import mu_i_params, mu_i_scheme
+from .granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
 
 SAND = MU_I_MATERIALS["sand_0.4mm"]
-MACH = 0.1  # 004_ Sec. 5.2, with U = sqrt(g H_0)
 
 
 def column_params(a, dp, m_0):
@@ -55,7 +54,7 @@ def sand(p, H0):
     """The MuIGranular of the parameters ``p`` for a column of height ``H0``."""
     mu_s = math.tan(math.radians(p.mu_s_deg))
     rho0 = p.phi_max * p.rho_s0
-    K_t = p.K_t if p.K_t != 0 else MACH**2 / (rho0 * p.g * H0)
+    K_t = p.K_t if p.K_t != 0 else mach_compressibility(rho0, p.g * H0)
     tau_0 = p.tau_0 if p.tau_0 != 0 else mu_s * rho0 * p.g * H0
     return MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=mu_s, mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0,
                        K_t=K_t, tau_0=tau_0, m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)

@@ -1,7 +1,17 @@
 """What every mu(I) case shares (004_): the scheme's discretisation options as case parameters,
-and the scheme and integrator they select."""
+the scheme and integrator they select, and the grain compressibility of a chosen Mach number."""
 
 from .case import Param
+
+MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
+
+
+def mach_compressibility(rho0, speed_squared, mach=MACH):
+    """K_t [1/Pa] that puts a flow of speed U (``speed_squared`` = U^2 [m^2/s^2]) at Mach number ``mach``
+    in grains of bulk density ``rho0`` at rest: the sound speed of Eqs. 9, 41 is c0 = 1/sqrt(K_t rho0),
+    so K_t = mach^2/(rho0 U^2). (004_ Tables 2 and 3 print about 1/(rho0 c0) instead, which is not a
+    compressibility: Pa^-1 needs c0^2.)"""
+    return mach**2 / (rho0 * speed_squared)
 
 
 def mu_i_params(alpha_doc, viscous_step):

@@ -152,11 +152,17 @@ def zero_crossings(t, y, rising):
     return t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
 
 
-def first_period(t, y):
-    """First period of an oscillation that starts at y = 0 moving up: its first upward crossing after t > 0."""
+def period_ends(t, y):
+    """Ends of the whole periods of an oscillation that starts at y = 0 moving up: its upward
+    crossings after t > 0."""
     up = zero_crossings(t, y, rising=True)
-    up = up[up > 0.0]
-    return float(up[0]) if len(up) else float("nan")
+    return up[up > 0.0]
+
+
+def first_period(t, y):
+    """First period of an oscillation that starts at y = 0 moving up (nan before one ends)."""
+    ends = period_ends(t, y)
+    return float(ends[0]) if len(ends) else float("nan")
 
 
 def surface_profile(frame, dp):

@@ -485,8 +485,7 @@ def oscillating_beam(ranks, h_over_dp=30):
         m = tensile_instability(read_frame(files[-1], walls=True))
         rows.append((f"{st}, H/dp = 10, v_f = 0.05: energy at 1 s / initial", f"{energy[-1] / energy[0]:.3f}",
                      "1", f"{energy[-1] / energy[0] - 1:+.3f}", "utvf above tvf and none"))
-        up = measure.zero_crossings(diag["t"], diag["tip_uy"], rising=True)
-        up = up[up > 0.0]
+        up = measure.period_ends(diag["t"], diag["tip_uy"])
         if len(up):
             at_crossing[st] = np.interp(up[-1], diag["t"], energy) / energy[0]
             rows.append((f"{st}: energy at the last upward crossing of the tip ({up[-1]:.3f} s) / initial",
@@ -644,7 +643,8 @@ def inclined_plane(ranks):
         a.legend(fontsize=7)
     image = save(fig, "inclined_plane.png")
     note = ("004_ Table 2: H = 0.1 m, dp = 5 mm, 40 columns (800 grains), m_0 = 1 s, the explicit step of "
-            "Eq. 39, to 6.5 s, where 004_ reports its steady state. Layers are dp-thick bins of the last "
+            "Eq. 39, to 6.5 s, where 004_ reports its steady state; K_t for Mach 0.1 at the analytical surface "
+            "speed as 004_ Sec. 5.1 says (1.3e-7 1/Pa; Table 2 prints 1.5e-5, which puts that flow at Mach 1.1). Layers are dp-thick bins of the last "
             "frame; the surface velocity is the mean of the top layer; the analytical profile takes "
             "incompressible grains and no regularisation. An open gap (issue 14): no variant is steady at "
             "6.5 s; every layer is still accelerating (the trend rows), with its shear in the lower half "

@@ -10,7 +10,9 @@ import math
 import numpy as np
 import pytest
 
+from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity
 from mpirun import mpisph
 
 SMALL = ["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=8", "--set", "m_0=0.2"]
@@ -29,9 +31,25 @@ def test_slope_steeper_than_mu_2_runs_with_a_warning(tmp_path):
 
 @pytest.mark.parametrize("setting, words", [("mu_2_deg=15", "mu_2"), ("phi_min=0.7", "phi_min"),
                                             ("d=0", "parameter d must be positive"),
-                                            ("K_t=-1e-5", "parameter K_t must be positive")])
+                                            ("K_t=-1e-5", "K_t must be positive")])
 def test_bad_material_is_a_one_line_error(tmp_path, setting, words):
     r = mpisph(["inclined_plane", "--set", setting, "--out", tmp_path, "--quiet"], ranks=1)
     assert r.returncode == 2
     assert r.stderr.strip().startswith("mpisph: error:") and words in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("theta, speed", [(25.0, "steady"), (0.0, "sqrt(g H)")])
+def test_grain_compressibility_puts_the_flow_at_mach_0_1(theta, speed):
+    """004_ Sec. 5.1 chooses K_t for Mach 0.1 at the steady surface speed; Table 2's 1.5e-5 1/Pa
+    would put the glass beads' steady flow (12.8 m/s) near Mach 1."""
+    module = load_case_module("inclined_plane")
+    p = resolve_params(module, {"theta": str(theta)})
+    material = build_case(module, p).material
+    u = inclined_plane_surface_velocity(material, theta, p["H"], p["g"]) if speed == "steady" else math.sqrt(
+        p["g"] * p["H"])
+    assert u / material.c0 == pytest.approx(0.1, rel=1e-12)
+    printed = build_case(module, resolve_params(module, {"K_t": str(INCLINED_PLANE_TABLE_2["K_t"])})).material
+    assert printed.K_t == INCLINED_PLANE_TABLE_2["K_t"]
+    if speed == "steady":
+        assert u / printed.c0 > 1.0

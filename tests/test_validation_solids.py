@@ -45,6 +45,17 @@ def test_column_collapse_deposit(tmp_path):
     assert np.linalg.norm(settled[-1]["v"], axis=1).max() < 0.01 * peak
 
 
+def test_period_ends_are_the_upward_crossings_after_the_start():
+    """An oscillation that starts at zero moving up ends its periods at T, 2T, ... (to the
+    interpolation error of the samples); a run shorter than T has no first period."""
+    T = 0.254
+    t = np.linspace(0.0, 2.6 * T, 400)
+    y = np.sin(2 * np.pi * t / T)
+    assert measure.period_ends(t, y) == pytest.approx([T, 2 * T], abs=1e-4)
+    assert measure.first_period(t, y) == pytest.approx(T, abs=1e-4)
+    assert np.isnan(measure.first_period(t[t < 0.9 * T], y[t < 0.9 * T]))
+
+
 @pytest.mark.parametrize("v_f", [0.01, 0.05])
 def test_beam_first_period_and_energy(tmp_path, v_f):
     """UTVF beam at H/dp = 10 (H/dp = 20 and 30 in scripts/validate.py): first period within 8 % of
