@@ -9,7 +9,8 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # What scripts/mpi_env.sh exports for Open MPI 4: run as root, more ranks than cores,
 # no cross-memory attach (not allowed in containers), no mpirun banner after a rank
-# exits non-zero, idle ranks yield their core. Values already set in the environment win.
+# exits non-zero, idle ranks yield their core, no binding of rank r to core r (two runs at once
+# would share core 0). Values already set in the environment win.
 MPI_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT": "1",
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
@@ -17,6 +18,7 @@ MPI_ENV = {
     "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
     "OMPI_MCA_orte_execute_quiet": "1",
     "OMPI_MCA_mpi_yield_when_idle": "1",
+    "OMPI_MCA_hwloc_base_binding_policy": "none",
 }
 
 
