@@ -906,8 +906,8 @@ def main():
                           f"|---|---|---|---|---|\n{table}\n\n{note + chr(10) + chr(10) if note else ''}"
                           f"![{title}](img/{image})\n")
         print(f"{title}: done")
-    head = ("# Validation\n\nWritten by `python scripts/validate.py` (each case on "
-            f"{a.ranks} ranks; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
+    head = ("# Validation\n\nWritten by `python scripts/validate.py` (each section's command gives its rank "
+            "count; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
             "`tests/test_validation.py` and `tests/test_validation_solids.py` assert the same comparisons.\n\n")
     page.write_text(head + "\n".join(sections[k] for k in VALIDATIONS if k in sections))
     if misses:
