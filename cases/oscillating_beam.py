@@ -18,6 +18,11 @@ PARAMS = {
     "shear_force": Param("corrected", "-", "the shear part of the momentum sum: B-corrected (conserves kinetic "
                          "+ strain energy, physics/solid.py) or as_printed (000_ Eq. 22)",
                          choices=("corrected", "as_printed")),
+    "scheme": Param("riemann_elastic", "-", "riemann_elastic: 000_ Sec. 3.1.2; classic_elastic: the classic SPH of "
+                    "Gray, Monaghan & Swift 2001 (artificial viscosity, predictor-corrector), whose artificial "
+                    "stress is 000_'s SPH-AS", choices=("riemann_elastic", "classic_elastic")),
+    "av_alpha": Param(1.0, "-", "alpha of the artificial viscosity (002_ Eq. 25; classic_elastic)"),
+    "av_beta": Param(1.0, "-", "beta of the artificial viscosity (002_ Eq. 25; classic_elastic)"),
     **SOLID_PARAMS,
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
@@ -30,6 +35,14 @@ def mode_shape(x, L):
     k = KL / L
     return ((np.sin(KL) + np.sinh(KL)) * (np.cos(k * x) - np.cosh(k * x))
             - (np.cos(KL) + np.cosh(KL)) * (np.sin(k * x) - np.sinh(k * x)))
+
+
+def scheme_choice(p):
+    """The keyword arguments of the Case for the scheme the parameters ``p`` choose."""
+    if p.scheme == "classic_elastic":
+        return {"scheme": p.scheme, "integrator": "predictor_corrector",
+                "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta}}
+    return {"scheme": p.scheme, "scheme_options": {"shear_force": p.shear_force}}
 
 
 def setup(p):
@@ -55,8 +68,7 @@ def setup(p):
         domain=((-grip - p.L, -p.L), (2 * p.L, p.L)),
         dp=dp,
         material=material,
-        scheme="riemann_elastic",
-        scheme_options={"shear_force": p.shear_force},
+        **scheme_choice(p),
         bodies=[Body("beam", x, velocity=velocity, clamped=~free)],
         stabilisers=p.stabiliser,
         probes={"tip": tip},

@@ -1,6 +1,7 @@
 """The classic SPH of 002_ (mpisph/physics/classic_granular.py): momentum of Eq. 23 with the
 artificial viscosity of Eq. 25, the stress rate of Eq. 28 from the plain gradient, the scaling
-back of Eqs. 19-21, the predictor-corrector, and the soil cylinder of Sec. 5 at CI size."""
+back of Eqs. 19-21, the predictor-corrector, the soil cylinder of Sec. 5 at CI size, and the
+same SPH for an elastic solid (classic_elastic, Gray et al. 2001)."""
 
 import numpy as np
 import pytest
@@ -11,7 +12,8 @@ from mpisph.kernels import Kernel
 from mpisph.materials import DruckerPrager
 from mpisph.neighbours import neighbour_lists
 from mpisph.parts import make_parts
-from mpisph.physics.classic_granular import classic_stress_acceleration, classic_stress_rate, scale_back
+from mpisph.physics.classic_granular import (UNBOUNDED_STRENGTH, classic_stress_acceleration, classic_stress_rate,
+                                             scale_back)
 from mpisph.physics.solid import material_pressure
 from mpisph.tensors import packed, unpacked
 from mpisph.io.diagnostics import read_diagnostics
@@ -94,6 +96,33 @@ def test_stress_rate_is_hookes_law_in_the_interior_under_a_uniform_gradient():
     got = unpacked(rate[inner], 3)
     np.testing.assert_allclose(got, np.broadcast_to(expected, got.shape), atol=2e-2 * np.abs(expected).max())
     assert np.all(plastic == 0.0)
+
+
+def test_elastic_stress_rate_is_hookes_law_where_soil_would_yield():
+    """classic_elastic's strength (alpha_phi, alpha_psi, k_c) = (0, 0, infinity) under a pure strain rate v = A x (A symmetric,
+    no spin, so no Jaumann terms): from a stress far outside the soil's yield surface the rate is
+    still 2 G D + (K - 2G/3) tr D I in the interior, where the soil's rate is cut by yielding."""
+    _, x, kind, start, nbr, k, mass, rho = cloud(0, n=16, jitter=0.0)
+    rho = np.full(len(x), SOIL.rho0)
+    A = np.array([[1e-3, 2e-3], [2e-3, 3e-3]])  # loading: s : D > 0 and tr D > 0
+    v = x @ A.T
+    sigma0 = np.diag([-3e5, -1e5, -3e5])  # sqrt(J2) = 1.15e5 Pa, above the soil's limit k_c - alpha I1
+    L = np.zeros((3, 3))
+    L[:2, :2] = A
+    D = 0.5 * (L + L.T)
+    expected = 2 * SOIL.G * D + (SOIL.K - 2 * SOIL.G / 3) * np.trace(D) * np.eye(3)
+    inner = np.all(np.abs(x - 0.08) < 0.03, axis=1)
+    rates = {}
+    for name, strength, plastic in (("elastic", UNBOUNDED_STRENGTH, np.zeros(0)),
+                                    ("soil", (SOIL.alpha_phi, SOIL.alpha_psi, SOIL.k_c), np.zeros(len(x)))):
+        stress = np.tile(packed(sigma0[None])[0], (len(x), 1))
+        rate = np.zeros((len(x), 6))
+        classic_stress_rate(len(x), start, nbr, x, v, mass, rho, kind, np.zeros_like(x), np.zeros(len(x)), 1.5,
+                            k.params, SOIL.K, SOIL.G, *strength, stress, rate, plastic)
+        rates[name] = unpacked(rate[inner], 3)
+    tolerance = 2e-2 * np.abs(expected).max()
+    np.testing.assert_allclose(rates["elastic"], np.broadcast_to(expected, rates["elastic"].shape), atol=tolerance)
+    assert np.abs(rates["soil"] - expected).max() > 10 * tolerance
 
 
 def test_scaling_back_lands_on_the_yield_surface_and_leaves_admissible_stresses():

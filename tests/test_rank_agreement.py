@@ -26,6 +26,9 @@ CASES = {
     # an elastic solid with particle shifting: its shear stress carried to the shifted places
     "oscillating_beam": (["--set", "H_over_dp=5", "stabiliser=shifting", "--t-end", "0.012", "--output-interval",
                           "0.006"], 0.6),
+    # Gray et al.'s classic SPH for an elastic solid with their artificial stress (000_'s SPH-AS)
+    "oscillating_beam classic": (["--set", "H_over_dp=5", "scheme=classic_elastic", "stabiliser=artificial_stress",
+                                  "--t-end", "0.012", "--output-interval", "0.006"], 0.6),
     "dam_break_3d": (["--set", "dp=0.1", "--t-end", "0.25", "--output-interval", "0.125"], 4.3),
     # the adaptive B-spline: knots per particle from the pressure zones, a pair kernel of two knots
     "vertical_cut": (["--set", "dp=0.1", "stabiliser=adaptive_kernel", "--t-end", "0.6", "--output-interval", "0.3"],

@@ -1,4 +1,5 @@
-"""The classic SPH of 002_ for Drucker-Prager soil (Secs. 2-3, 5): the alternative to the Riemann scheme.
+"""The classic SPH of 002_ for Drucker-Prager soil (Secs. 2-3, 5), the alternative to the Riemann
+scheme, and the same SPH for a linear elastic solid (Gray, Monaghan & Swift 2001).
 
 In mpisph's sign convention (r_ij = x_i - x_j, grad_i W_ij = W' r_ij / r,
 W' <= 0, kernels.py), with v_ij = v_i - v_j and sigma = s - p I (tension
@@ -30,6 +31,13 @@ The scheme computes rates only; the integrator advances the stress and the
 accumulated plastic strain (``integrated_fields``) and calls ``constrain``
 after each update, which scales the stress back (predictor_corrector.py, 002_
 Sec. 3's time stepping, and position_verlet.py both do).
+
+``classic_elastic`` takes a linear elastic solid through the same sums: Eq. 28
+with no yield surface (the rate of Drucker-Prager with unbounded strength,
+alpha_phi = alpha_psi = 0, k_c = infinity, which is the elastic Jaumann rate
+of elastic.py on the plain gradient) and nothing to scale back. That is the SPH
+elastic dynamics of Gray, Monaghan & Swift 2001, whose artificial stress
+(stabiliser ``artificial_stress``) is the SPH-AS of 000_ Table 1 and Fig. 13.
 """
 
 import math
@@ -40,17 +48,19 @@ from numba import njit
 from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw
-from ..materials import DruckerPrager
+from ..materials import DruckerPrager, ElasticSolid
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import SYM3, unpack_row
 from .drucker_prager import PLASTIC_STRAIN, plastic_stress_rate, return_mapping
 from .mu_i import continuity
-from .solid import STRESS, material_pressure, solid_output_fields, tensor_times, velocity_gradient
+from .solid import STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times, velocity_gradient
 from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
 
 MU_EPSILON = 0.01  # the 0.01 h^2 of Eq. 25's mu_ij
+UNBOUNDED_STRENGTH = (0.0, 0.0, math.inf)  # (alpha_phi, alpha_psi, k_c) of an elastic solid: Eq. 28 never yields
+STRESS_RATE = Field("stress_rate", (6,), np.float64, "Jaumann stress rate of 002_ Eq. 28, packed [Pa/s]")
 
 
 @njit(cache=True)
@@ -100,9 +110,9 @@ def classic_stress_acceleration(n, start, nbr, xc, v, rho, p, stress, mass, kind
 @njit(cache=True)
 def classic_stress_rate(n, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, chi_max, k, K, G, alpha_phi,
                         alpha_psi, k_c, stress, stress_rate, plastic_rate):
-    """The stress rate of Eq. 28 (packed) and the rate of the accumulated plastic strain,
-    gamma_dot / sqrt(3) (drucker_prager.py), of the material particles, from the plain
-    velocity gradient of Eqs. 26-27 with Morris's walls."""
+    """The stress rate of Eq. 28 (packed) and, when ``plastic_rate`` has rows, the rate of the
+    accumulated plastic strain, gamma_dot / sqrt(3) (drucker_prager.py), of the material
+    particles, from the plain velocity gradient of Eqs. 26-27 with Morris's walls."""
     L = np.empty((3, 3))
     dev = np.empty((3, 3))
     rate = np.empty((3, 3))
@@ -118,7 +128,8 @@ def classic_stress_rate(n, start, nbr, xc, v, mass, rho, kind, normal, wall_dist
         for a in range(3):  # symmetric to the bit: every rate term is formed symmetrically
             for b in range(a, 3):
                 stress_rate[i, SYM3[a, b]] = rate[a, b]
-        plastic_rate[i] = gamma_dot / math.sqrt(3.0)
+        if plastic_rate.shape[0] > 0:
+            plastic_rate[i] = gamma_dot / math.sqrt(3.0)
 
 
 @njit(cache=True)
@@ -165,9 +176,10 @@ class ClassicGranular(Scheme):
     state_fields = ("rho", "p", "stress")
     carried_fields = ("v", "rho", "stress")
     integrated_fields = {"stress": "stress_rate", "plastic_strain": "plastic_rate"}
+    source = "002_"
     fields = (
         STRESS,
-        Field("stress_rate", (6,), np.float64, "Jaumann stress rate of 002_ Eq. 28, packed [Pa/s]"),
+        STRESS_RATE,
         PLASTIC_STRAIN,
         Field("plastic_rate", (), np.float64, "rate of the accumulated plastic strain [1/s]"),
         WALL_DISTANCE,
@@ -207,16 +219,56 @@ class ClassicGranular(Scheme):
         continuity(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.kind, pa.normal, pa.wall_distance, self.chi_max,
                    ctx.kernel.params, pa.drho_dt)
         classic_stress_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.mass, pa.rho, pa.kind, pa.normal,
-                            pa.wall_distance, self.chi_max, ctx.kernel.params, m.K, m.G, m.alpha_phi, m.alpha_psi,
-                            m.k_c, pa.stress, pa.stress_rate, pa.plastic_rate)
+                            pa.wall_distance, self.chi_max, ctx.kernel.params, m.K, m.G, *self.strength(), pa.stress,
+                            pa.stress_rate, self.plastic_rate(pa))
+
+    def strength(self):
+        """(alpha_phi, alpha_psi, k_c) of the yield surface (000_ Eq. 14)."""
+        m = self.material
+        return m.alpha_phi, m.alpha_psi, m.k_c
+
+    def plastic_rate(self, pa):
+        """The field the stress rate writes the accumulated plastic strain's rate into."""
+        return pa.plastic_rate
 
     def constrain(self, ctx):
         pa, m = ctx.particles, self.material
         scale_back(pa.n_owned, pa.kind, m.alpha_phi, m.k_c, m.G, pa.stress, pa.plastic_strain)
 
     def report(self):
-        return (f"classic SPH (002_): artificial viscosity alpha = {self.alpha:g}, beta = {self.beta:g}; "
+        return (f"classic SPH ({self.source}): artificial viscosity alpha = {self.alpha:g}, beta = {self.beta:g}; "
                 f"Morris walls chi_max = {self.chi_max:g}; sound speed c0 = {self.material.c0:.4g} m/s",)
 
     def derived_fields(self, pa, n):
         return solid_output_fields(pa, n)
+
+
+class ClassicElastic(ClassicGranular):
+    """Linear elastic solid in the classic SPH (module docstring): Gray, Monaghan & Swift 2001.
+    Options as ``classic_granular``; no plastic strain, nothing scaled back, and the strain
+    energy in the diagnostics as with ``riemann_elastic``."""
+
+    name = "classic_elastic"
+    materials = (ElasticSolid,)
+    integrated_fields = {"stress": "stress_rate"}
+    source = "Gray et al. 2001"
+    fields = (STRESS, STRESS_RATE, WALL_DISTANCE)
+    observable_names = ("strain_energy",)
+
+    def __init__(self, case, kernel):
+        super().__init__(case, kernel)
+        self._no_plastic_rate = np.zeros(0)
+
+    def strength(self):
+        return UNBOUNDED_STRENGTH
+
+    def plastic_rate(self, pa):
+        return self._no_plastic_rate
+
+    def constrain(self, ctx):
+        """Nothing to scale back: no yield surface."""
+
+    def observables(self, pa, n):
+        deviator = pa.stress[:n].copy()
+        deviator[:, :3] += pa.p[:n, None]
+        return {"strain_energy": strain_energy(pa, n, deviator, self.material)}

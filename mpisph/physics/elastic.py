@@ -18,9 +18,9 @@ import numpy as np
 from numba import njit
 
 from ..materials import ElasticSolid
-from ..particles import WALL, WALL_SLIP, Field, is_wall
+from ..particles import Field, is_wall
 from ..tensors import SYM3, unpack_row
-from .solid import SolidScheme, jaumann_rate, velocity_gradient
+from .solid import SolidScheme, jaumann_rate, strain_energy, velocity_gradient
 
 
 @njit(cache=True)
@@ -89,11 +89,4 @@ class RiemannElastic(SolidScheme):
         shear_stress_update(pa.n_owned, *self.gradient_args(ctx), self.material.G, dt, pa.shear_stress)
 
     def observables(self, pa, n):
-        """Strain energy sum V (s:s/4G + p^2/2K) of the material particles."""
-        m = self.material
-        material = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))
-        vol = pa.mass[:n] / pa.rho[:n]
-        s = pa.shear_stress[:n]
-        s_s = np.sum(s[:, :3] ** 2, axis=1) + 2.0 * np.sum(s[:, 3:] ** 2, axis=1)  # off-diagonals twice
-        dens = s_s / (4.0 * m.G) + pa.p[:n] ** 2 / (2.0 * m.K)
-        return {"strain_energy": float(np.sum((vol * dens)[material]))}
+        return {"strain_energy": strain_energy(pa, n, pa.shear_stress[:n], self.material)}

@@ -70,7 +70,7 @@ from numba import njit
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
-from ..particles import MOVING, WALL_SLIP, Field, is_wall
+from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity
@@ -262,6 +262,15 @@ def output_invariants(n, stress, v, von_mises, speed):
         for a in range(dim):
             vv += v[i, a] * v[i, a]
         speed[i] = np.sqrt(vv)
+
+
+def strain_energy(pa, n, deviator, material):
+    """Elastic strain energy sum V (s:s/4G + p^2/2K) of the material particles among the owned
+    [0, n), from their packed deviatoric stress s (rows [0, n)) and pressure p."""
+    vol = pa.mass[:n] / pa.rho[:n]
+    s_s = np.sum(deviator[:, :3] ** 2, axis=1) + 2.0 * np.sum(deviator[:, 3:] ** 2, axis=1)  # off-diagonals twice
+    density = s_s / (4.0 * material.G) + pa.p[:n] ** 2 / (2.0 * material.K)
+    return float(np.sum((vol * density)[~np.isin(pa.kind[:n], (WALL, WALL_SLIP))]))
 
 
 def solid_output_fields(pa, n):
