@@ -474,8 +474,10 @@ def oscillating_beam(ranks):
         beam_panel(fig, ax[2 + k], read_frame(files[at], walls=True), f"{label}, t = 0.35 s")
         ax[2 + k].set_xlim(-0.01, 0.22)
         m = tensile_instability(read_frame(files[-1], walls=True))
-        rows.append((f"{label}: first period [s]", f"{measure.first_period(diag['t'], diag['tip_uy']):.4f}",
-                     f"{references.beam_period():.4f} (Eq. 47)", "-", "-"))
+        period = measure.first_period(diag["t"], diag["tip_uy"])
+        rows.append((f"{label}: first period [s]", "no upward crossing" if np.isnan(period) else f"{period:.4f}",
+                     f"{references.beam_period():.4f} (Eq. 47)",
+                     "-" if np.isnan(period) else f"{100 * (period / references.beam_period() - 1):+.1f}%", "-"))
         up = measure.period_ends(diag["t"], diag["tip_uy"])
         if len(up):
             at_crossing[label] = np.interp(up[-1], diag["t"], energy) / energy[0]
