@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import SOLID_PARAMS, Body, Case, ElasticSolid, Param
+from mpisph.case import SOLID_PARAMS, Body, Case, ElasticSolid, Param, classic_viscosity_params, scheme_keywords
 from mpisph.geometry import box, support_layers
 
 KL = 1.875  # first root of cos(kL) cosh(kL) = -1
@@ -21,8 +21,7 @@ PARAMS = {
     "scheme": Param("riemann_elastic", "-", "riemann_elastic: 000_ Sec. 3.1.2; classic_elastic: the classic SPH of "
                     "Gray, Monaghan & Swift 2001 (artificial viscosity, predictor-corrector), whose artificial "
                     "stress is 000_'s SPH-AS", choices=("riemann_elastic", "classic_elastic")),
-    "av_alpha": Param(1.0, "-", "alpha of the artificial viscosity (002_ Eq. 25; classic_elastic)"),
-    "av_beta": Param(1.0, "-", "beta of the artificial viscosity (002_ Eq. 25; classic_elastic)"),
+    **classic_viscosity_params(1.0, 1.0, "classic_elastic"),
     **SOLID_PARAMS,
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
@@ -35,14 +34,6 @@ def mode_shape(x, L):
     k = KL / L
     return ((np.sin(KL) + np.sinh(KL)) * (np.cos(k * x) - np.cosh(k * x))
             - (np.cos(KL) + np.cosh(KL)) * (np.sin(k * x) - np.sinh(k * x)))
-
-
-def scheme_choice(p):
-    """The keyword arguments of the Case for the scheme the parameters ``p`` choose."""
-    if p.scheme == "classic_elastic":
-        return {"scheme": p.scheme, "integrator": "predictor_corrector",
-                "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta}}
-    return {"scheme": p.scheme, "scheme_options": {"shear_force": p.shear_force}}
 
 
 def setup(p):
@@ -68,7 +59,7 @@ def setup(p):
         domain=((-grip - p.L, -p.L), (2 * p.L, p.L)),
         dp=dp,
         material=material,
-        **scheme_choice(p),
+        **scheme_keywords(p, {}, {"shear_force": p.shear_force}),
         bodies=[Body("beam", x, velocity=velocity, clamped=~free)],
         stabilisers=p.stabiliser,
         probes={"tip": tip},

@@ -10,7 +10,8 @@ a cube standing in the middle of a square floor with a low rim.
 
 import numpy as np
 
-from .case import SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, limiter_param
+from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params, limiter_param,
+                   scheme_keywords)
 from .geometry import block, depth_outside, support_layers, walls_around
 from .physics.drucker_prager import geostatic_stress
 
@@ -37,8 +38,7 @@ def scheme_params(alpha=1.0, beta=0.0):
         "scheme": Param("riemann_granular", "-", "riemann_granular: 000_ Sec. 3.1.3; classic_granular: 002_ "
                         "Secs. 2-3 (artificial viscosity, stress scaling back, predictor-corrector, Morris walls)",
                         choices=("riemann_granular", "classic_granular")),
-        "av_alpha": Param(alpha, "-", "alpha of the artificial viscosity (002_ Eq. 25; classic_granular)"),
-        "av_beta": Param(beta, "-", "beta of the artificial viscosity (002_ Eq. 25; classic_granular)"),
+        **classic_viscosity_params(alpha, beta, "classic_granular"),
         "chi_max": Param(1.5, "-", "chi_max of Morris's walls (002_ Eq. 34, 1.5-2; classic_granular)",
                          positive=True),
         "limiter": limiter_param("separating"),
@@ -47,11 +47,8 @@ def scheme_params(alpha=1.0, beta=0.0):
 
 def scheme_choice(p):
     """The keyword arguments of a soil ``Case`` for the scheme the parameters ``p`` choose: the
-    classic scheme with its options and 002_'s predictor-corrector, or the Riemann scheme."""
-    if p.scheme == "classic_granular":
-        return {"scheme": p.scheme, "integrator": "predictor_corrector",
-                "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, "chi_max": p.chi_max}}
-    return {"scheme": p.scheme, "scheme_options": {"limiter": p.limiter}}
+    classic scheme with Morris's chi_max, or the Riemann scheme with its limiter."""
+    return scheme_keywords(p, {"chi_max": p.chi_max}, {"limiter": p.limiter})
 
 
 def block_on_floor(p, L, H, floor, name):
