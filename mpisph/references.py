@@ -117,6 +117,19 @@ def inclined_plane_surface_velocity(material, theta_deg, H, g):
     return float(inclined_plane_velocity(material, theta_deg, H, g, H))
 
 
+
+def inclined_plane_relaxation_time(material, theta_deg, H, g):
+    """Time constant T [s] with which a layer's mean speed U approaches the uniform flow's U_u
+    (mpisph's derivation, not 004_'s): the layer's momentum, rho H dU/dt = rho g H (sin(theta) -
+    mu(I_b) cos(theta)), linearised about I_u with I proportional to U (the profile keeping its
+    shape), gives dU/dt = -(U - U_u) / T with T = U_u / (g cos(theta) I_u mu'(I_u)); U_u is 3/5
+    of the surface speed. The flatter mu(I) is at I_u, the slower the approach."""
+    I_u, _ = material.uniform_flow(theta_deg)
+    a = I_u + material.params.I_s
+    slope = (material.mu_2 - material.mu_s) * material.I_0 / (a + material.I_0) ** 2  # mu'(I_u), Eq. 7
+    mean = 0.6 * inclined_plane_surface_velocity(material, theta_deg, H, g)
+    return mean / (g * np.cos(np.radians(theta_deg)) * I_u * slope)
+
 def inclined_plane_pressure(material, theta_deg, H, g, z):
     """Hydrostatic pressure phi_u rho_s0 g cos(theta) (H - z) of the steady layer (004_ Fig. 7)."""
     _, phi_u = material.uniform_flow(theta_deg)

@@ -166,6 +166,25 @@ def test_uniform_flow_down_the_incline():
         mat.uniform_flow(20.0)  # below mu_s: the layer stays at rest
 
 
+
+@pytest.mark.parametrize("H", [0.02, 0.1])
+def test_layer_approaches_uniform_flow_with_the_relaxation_time(H):
+    """The layer's mean speed U under rho H dU/dt = rho g H (sin - mu(I_u U / U_u) cos), integrated
+    with the full law from U = 0.99 U_u, closes the gap by e in the time
+    references.inclined_plane_relaxation_time gives: 1.35 s at H = 0.02 m, 15 s at H = 0.1 m."""
+    mat, g, theta = beads(), 9.81, 25.0
+    I_u, _ = mat.uniform_flow(theta)
+    U_u = 0.6 * references.inclined_plane_surface_velocity(mat, theta, H, g)
+    T = references.inclined_plane_relaxation_time(mat, theta, H, g)
+    s, c = math.sin(math.radians(theta)), math.cos(math.radians(theta))
+    U, t, dt = 0.99 * U_u, 0.0, T / 2000
+    while U_u - U > 0.01 * U_u / math.e:
+        k1 = g * (s - friction(I_u * U / U_u, mat.params) * c)
+        k2 = g * (s - friction(I_u * (U + 0.5 * dt * k1) / U_u, mat.params) * c)
+        U, t = U + dt * k2, t + dt
+    assert t == pytest.approx(T, rel=0.005)  # the law's curvature over the 1 % gap
+    assert T == pytest.approx({0.02: 1.35, 0.1: 15.1}[H], rel=0.01)
+
 def viscous_acceleration(dim, h_over_dp, corrected):
     """dv_x/dt of u = (y^2, 0[, 0]) with eta = 2 Pa s, rho = 1000 (exact: 2 eta/rho) on a lattice."""
     x, kind, start, nbr, k, inner = lattice(dim, h_over_dp)

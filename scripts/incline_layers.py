@@ -1,0 +1,109 @@
+"""Where an inclined-plane run stands against the uniform flow, layer by layer (docs/INCLINE.md).
+
+    .venv/bin/python scripts/incline_layers.py RUN_DIR [--frames 40]
+
+Averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers
+above the bed and prints, per layer: speed over the analytical u(z) (references), the shear rate
+2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the
+grains above the layer's centre), the friction mu(I) of the particles over tan(theta), and
+I over I_u. With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
+that the momentum sum uses, and the script also splits the shear traction across the planes
+between the layers into the pressure pairs, the viscous pairs and the momentum the particles
+carry across (m u' v'), each over the weight's component along the slope: in a steady layer the
+three add up to 1. Frames must be close in time (an output interval of about 0.05 s) for the
+averages to settle.
+"""
+
+import argparse
+import math
+
+import numpy as np
+
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.kernels import Kernel
+from mpisph.references import inclined_plane_velocity
+
+
+def layer_table(frames, p, material):
+    """Rows (height, u/u_a, shear rate/analytical, p/p_h, mu/tan, I/I_u) averaged over ``frames``;
+    u/u_a is nan for a layer centred on the bed, where u_a = 0."""
+    dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
+    I_u, _ = material.uniform_flow(p["theta"])
+    sums = {}
+    for f in frames:
+        y, m = f["x"][:, 1], f["mass"]
+        layer = np.floor(y / dp).astype(int)
+        for k in np.unique(layer):
+            s = layer == k
+            centre = y[s].mean()
+            p_h = (m[y > centre].sum() + 0.5 * m[s].sum()) * g * math.cos(theta) / length
+            row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(), p_h,
+                   f["friction"][s].mean(), f["inertial_number"][s].mean())
+            sums.setdefault(k, []).append(row)
+    rows = []
+    for k in sorted(sums):
+        centre, u, rate, pressure, p_h, mu, I = np.mean(sums[k], axis=0)
+        u_a = inclined_plane_velocity(material, p["theta"], p["H"], g, min(max(centre, 0.0), p["H"]))
+        rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
+        rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, mu / math.tan(theta),
+                     I / I_u))
+    return rows
+
+
+def traction_table(frames, p):
+    """Rows (plane height, shear traction of the pressure pairs, of the viscous pairs, of the momentum
+    carried across, each over the weight's component along the slope) at the planes between layers."""
+    dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
+    kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
+    planes = np.arange(1, int(p["H"] / dp)) * dp
+    sums = np.zeros((len(planes), 3))
+    for f in frames:
+        x, m, rho, pressure, T = f["x"], f["mass"], f["rho"], f["p"], f["T_visc"]
+        dx = x[:, None, 0] - x[None, :, 0]
+        dx -= length * np.round(dx / length)  # periodic along the slope
+        dy = x[:, None, 1] - x[None, :, 1]
+        r = np.hypot(dx, dy)
+        np.fill_diagonal(r, 1.0)
+        f_r = kernel.derivative(r) / r  # grad_i W_ij = f_r r_ij
+        np.fill_diagonal(f_r, 0.0)
+        mm = m[:, None] * m[None, :] * f_r
+        on_i_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * dx
+        Tr = T / (rho**2)[:, None, None]
+        on_i_v = mm * ((Tr[:, None, 0, 0] + Tr[None, :, 0, 0]) * dx + (Tr[:, None, 0, 1] + Tr[None, :, 0, 1]) * dy)
+        layer = np.floor(x[:, 1] / dp).astype(int)
+        u = f["v"][:, 0] - np.array([f["v"][layer == k, 0].mean() for k in layer])
+        for n, Y in enumerate(planes):
+            above = x[:, 1] > Y
+            across = above[:, None] & ~above[None, :]
+            weight = m[above].sum() * g * math.sin(theta) / length
+            band = np.abs(x[:, 1] - Y) < dp
+            carried = (m[band] * u[band] * f["v"][band, 1]).sum() / (2.0 * dp * length)
+            # the part above feels -(weight along the slope) from below in a steady layer
+            sums[n] += (-on_i_p[across].sum() / length / weight, -on_i_v[across].sum() / length / weight,
+                        -carried / weight)
+    return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run")
+    ap.add_argument("--frames", type=int, default=40, help="the last this many frames are averaged")
+    a = ap.parse_args()
+    frames = [read_frame(f) for f in list_frames(a.run)[-a.frames:]]
+    p = frames[-1]["params"]
+    module = load_case_module("inclined_plane")
+    material = build_case(module, resolve_params(module, {k: str(v) for k, v in p.items()
+                                                          if k in module.PARAMS})).material
+    print(f"{a.run}: {len(frames)} frames, t = {frames[0]['t']:.2f} to {frames[-1]['t']:.2f} s")
+    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>7} {'p/p_h':>6} {'mu/tan':>7} {'I/I_u':>6}")
+    for row in layer_table(frames, p, material):
+        print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
+    if "T_visc" in frames[-1]:
+        print(f"{'plane':>7} {'pressure':>9} {'viscous':>8} {'carried':>8} {'sum':>6}   (shear traction / weight's)")
+        for Y, pressure, viscous, carried in traction_table(frames, p):
+            print(f"{1e3 * Y:7.2f} {pressure:9.3f} {viscous:8.3f} {carried:8.3f} {pressure + viscous + carried:6.3f}")
+
+
+if __name__ == "__main__":
+    main()
