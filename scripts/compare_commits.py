@@ -53,6 +53,8 @@ RUNS = {
     "hydrostatic_tank": ("hydrostatic_tank", ["--set", "dp=0.05", "--t-end", "0.1"]),
     "oscillating_beam": ("oscillating_beam", ["--set", "H_over_dp=5", "--t-end", "0.01"]),
     "oscillating_beam none": ("oscillating_beam", ["--set", "H_over_dp=5", "stabiliser=none", "--t-end", "0.01"]),
+    "oscillating_beam classic": ("oscillating_beam", ["--set", "H_over_dp=5", "scheme=classic_elastic",
+                                                      "stabiliser=artificial_stress", "--t-end", "0.01"]),
     "column_collapse_2d": ("column_collapse_2d", ["--set", "dp=0.01", "--t-end", "0.03"]),
     "column_collapse_2d tvf dual": ("column_collapse_2d", ["--set", "dp=0.01", "stabiliser=tvf",
                                                            "time_stepping=dual", "--t-end", "0.03"]),
