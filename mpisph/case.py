@@ -118,7 +118,6 @@ def limiter_param(default):
                  choices=("approaching", "separating", "none"))
 
 
-
 def classic_viscosity_params(alpha, beta, scheme):
     """The alpha and beta of 002_ Eq. 25's artificial viscosity, with the case's defaults, for a
     case that offers the classic scheme ``scheme`` (read by ``scheme_keywords``)."""
@@ -136,6 +135,7 @@ def scheme_keywords(p, classic_options, riemann_options):
         return {"scheme": p.scheme, "integrator": "predictor_corrector",
                 "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, **classic_options}}
     return {"scheme": p.scheme, "scheme_options": riemann_options}
+
 
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).

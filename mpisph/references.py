@@ -117,7 +117,6 @@ def inclined_plane_surface_velocity(material, theta_deg, H, g):
     return float(inclined_plane_velocity(material, theta_deg, H, g, H))
 
 
-
 def inclined_plane_relaxation_time(material, theta_deg, H, g):
     """Time constant T [s] with which a layer's mean speed U approaches the uniform flow's U_u
     (mpisph's derivation, not 004_'s): the layer's momentum, rho H dU/dt = rho g H (sin(theta) -
@@ -129,6 +128,7 @@ def inclined_plane_relaxation_time(material, theta_deg, H, g):
     slope = (material.mu_2 - material.mu_s) * material.I_0 / (a + material.I_0) ** 2  # mu'(I_u), Eq. 7
     mean = 0.6 * inclined_plane_surface_velocity(material, theta_deg, H, g)
     return mean / (g * np.cos(np.radians(theta_deg)) * I_u * slope)
+
 
 def inclined_plane_pressure(material, theta_deg, H, g, z):
     """Hydrostatic pressure phi_u rho_s0 g cos(theta) (H - z) of the steady layer (004_ Fig. 7)."""

@@ -72,7 +72,9 @@ def traction_table(frames, p):
         Tr = T / (rho**2)[:, None, None]
         on_i_v = mm * ((Tr[:, None, 0, 0] + Tr[None, :, 0, 0]) * dx + (Tr[:, None, 0, 1] + Tr[None, :, 0, 1]) * dy)
         layer = np.floor(x[:, 1] / dp).astype(int)
-        u = f["v"][:, 0] - np.array([f["v"][layer == k, 0].mean() for k in layer])
+        layer -= layer.min()
+        layer_mean = np.bincount(layer, f["v"][:, 0]) / np.bincount(layer)
+        u = f["v"][:, 0] - layer_mean[layer]
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]

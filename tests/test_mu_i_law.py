@@ -166,7 +166,6 @@ def test_uniform_flow_down_the_incline():
         mat.uniform_flow(20.0)  # below mu_s: the layer stays at rest
 
 
-
 @pytest.mark.parametrize("H", [0.02, 0.1])
 def test_layer_approaches_uniform_flow_with_the_relaxation_time(H):
     """The layer's mean speed U under rho H dU/dt = rho g H (sin - mu(I_u U / U_u) cos), integrated
@@ -184,6 +183,7 @@ def test_layer_approaches_uniform_flow_with_the_relaxation_time(H):
         U, t = U + dt * k2, t + dt
     assert t == pytest.approx(T, rel=0.005)  # the law's curvature over the 1 % gap
     assert T == pytest.approx({0.02: 1.35, 0.1: 15.1}[H], rel=0.01)
+
 
 def viscous_acceleration(dim, h_over_dp, corrected):
     """dv_x/dt of u = (y^2, 0[, 0]) with eta = 2 Pa s, rho = 1000 (exact: 2 eta/rho) on a lattice."""
