@@ -6,6 +6,7 @@ per neighbour configuration, gives its force terms and its rates, and says how
 large a time step it allows. It sees the step only through a ``StepContext``
 (context.py). The integrator calls it in this order (integrators/):
 
+    start(ctx)          once, before the first frame of a run from t = 0
     configure(ctx)      once per configuration, after the neighbour lists
     state(ctx)          per step: what the momentum sum reads (pressure, stress),
                         then the integrator refreshes ``state_fields`` on ghosts
@@ -87,6 +88,9 @@ class Scheme:
         """Per step, after the explicit kick of the owned particles' ``v`` (sent to ghosts): the
         velocities with the scheme's implicit terms over dt."""
         raise NotImplementedError
+
+    def start(self, ctx):
+        """Once, before the first frame of a run from t = 0: the state of the initial particles."""
 
     def configure(self, ctx):
         """Once per neighbour configuration."""

@@ -1,6 +1,8 @@
 """The step loop: the order of an advection step, frames and diagnostics.
 
-Per advection step (one neighbour configuration), on every rank:
+A run from t = 0 first takes steps 1-7 below on the initial particles, the
+scheme's ``start`` (the state of the initial particles) and frame 0. Then per
+advection step (one neighbour configuration), on every rank:
 
     1. check       stop on a non-finite value, a non-positive density or a particle
                    outside the domain (also when a time-step limit comes out <= 0)
@@ -173,6 +175,8 @@ class Simulation:
         wall0, t0, step0 = wallclock.perf_counter(), self.t, self.step
         if self.step == 0:
             self._configure_geometry()  # the surface classes of the first frame
+            with self.timer("physics"):
+                self.parts.scheme.start(self.ctx)
             self.write_frame()
             self._record()
         while self.t < t_end:

@@ -40,7 +40,11 @@ relative velocity beta (v_i - v_w).
 The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
 acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
 part as the scheme's ``time_step_limit``, which the implicit viscous kick
-(option ``viscous_step``, implicit_viscosity.py) lifts. The viscous force is evaluated every
+(option ``viscous_step``, implicit_viscosity.py) lifts. The viscous limit takes the viscosity
+of the last step's state (at the start of a run, of the initial particles' state), as the
+later steps of a configuration always did: evaluating the state once more per configuration
+for it cost two of the five pair passes of a step when every step has its own configuration
+(docs/PERFORMANCE.md). The viscous force is evaluated every
 step, so the advection criterion of 001_ Eq. 10 needs no viscous term here.
 The order of the sub-steps is integrators/symplectic_verlet.py's.
 """
@@ -88,13 +92,14 @@ def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, be
             f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
             m00 += f * u0 * d0
             m01 += f * u0 * d1
-            m02 += f * u0 * d2
             m10 += f * u1 * d0
             m11 += f * u1 * d1
-            m12 += f * u1 * d2
-            m20 += f * u2 * d0
-            m21 += f * u2 * d1
-            m22 += f * u2 * d2
+            if dim == 3:
+                m02 += f * u0 * d2
+                m12 += f * u1 * d2
+                m20 += f * u2 * d0
+                m21 += f * u2 * d1
+                m22 += f * u2 * d2
         M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
         norm = 0.0
         for a in range(dim):
@@ -165,8 +170,9 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
                 rho_j, p_j, eta_j, gamma_dot_j, tj = rho[i], p[i], eta[i], gamma_dot[i], i
             rho_j2 = rho_j * rho_j
             vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
-            pi_ij = -alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))
-            scalar = -(p[i] / rho_i2 + p_j / rho_j2 + pi_ij)
+            scalar = -(p[i] / rho_i2 + p_j / rho_j2)
+            if alpha > 0.0:
+                scalar += alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))  # -Pi_ij
             if not corrected and viscous_factor > 0.0:  # 0: the implicit kick takes the viscous term
                 eta_sum = eta[i] + eta_j
                 if eta_sum > 0.0:
@@ -259,8 +265,8 @@ VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_l
 class MuIScheme(Scheme):
     """mu(I) granular fluid with weakly compressible grains (004_ Secs. 3-4).
 
-    Per configuration: the wall distances on ghosts, and the state (so that the
-    viscous time-step limit sees the current viscosity); per step: strain rate,
+    At the start of a run the state of the initial particles; per configuration:
+    the wall distances on ghosts and the density reinitialisation; per step: strain rate,
     then grain density, pressure and viscosity (the state), and continuity (the
     rate). Options (``Case.scheme_options``): ``alpha`` of Eq. 38 (default 0),
     ``beta_max`` of Eq. 36 (default 1.5, Morris et al.), ``viscous_form``:
@@ -328,6 +334,8 @@ class MuIScheme(Scheme):
             density_summation(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, self.material.rho0,
                               ctx.kernel.params, self.lattice_sum, self.density_reinit == "free_surface")
             ctx.refresh(["rho"])
+
+    def start(self, ctx):
         self.state(ctx)
         ctx.refresh(self.state_fields)
 

@@ -84,7 +84,7 @@ def _excess(x, rho_star, phi_max, s):
     """F(x) and F'(x) of the module docstring, s = 2/D - 1."""
     u = phi_max - rho_star / x
     du = rho_star / (x * x)
-    xs = x**s
+    xs = 1.0 if s == 0.0 else x**s  # 2D: no power
     f = u * u * (x - 1.0) * xs
     df = (2.0 * u * du * (x - 1.0) + u * u) * xs + u * u * (x - 1.0) * s * xs / x
     return f, df
@@ -108,18 +108,17 @@ def grain_density_ratio(rho, gamma_dot, guess, dim, m):
     for _ in range(NEWTON_ITERATIONS):
         f, df = _excess(x, rho_star, m.phi_max, s)
         g = f - target
+        if g == 0.0:
+            return x
         if g > 0.0:
             hi = x
         else:
             lo = x
-        if g == 0.0:
-            return x
-        step = g / df if df > 0.0 else math.inf
-        new = x - step
+        new = x - g / df if df > 0.0 else math.inf
+        if abs(new - x) <= 4e-16 * x:  # converged, before the bracket test: a step below one ulp lands on hi
+            return new
         if not (lo < new < hi):
             new = 0.5 * (lo + hi) if hi < math.inf else x0 + 2.0 * (x - x0)
-        if abs(new - x) <= 4e-16 * x:
-            return new
         x = new
     return x
 
