@@ -25,7 +25,10 @@ make the system unsymmetric; projected it is beta (d.n)^2 (n.u) n.
 Multiplied by the masses, the system m (u - dt a_visc[u]) = m b is symmetric
 (m_i m_j eta_ij / (rho_i rho_j) is) and positive definite (each pair
 dissipates), so it is solved by conjugate gradients with the particles' own
-dim x dim diagonal blocks as preconditioner. Its dot products are
+dim x dim diagonal blocks as preconditioner, from the first guess b + dt a_visc
+of the particle's last kick (field ``viscous_acceleration``; zero at the start of
+a run), whose residual is about a hundredth of b's in the 3D collapse
+(docs/PERFORMANCE.md). Its dot products are
 partition-independent sums (parallel/exact_sum.py), so the iterates, the
 iteration count and the particles stay bit for bit the same on any number of
 ranks. The iteration stops when the preconditioned residual, as an RMS
@@ -40,8 +43,8 @@ from numba import njit
 
 from ..errors import InputError, NoConvergence
 from ..kernels import pair_dw
-from ..neighbours import pair_offset
-from ..particles import MOVING, WALL, is_wall
+from ..neighbours import pair_difference, pair_offset
+from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
 from ..tensors import adjugate
 from .mu_i_law import pair_viscosity
@@ -52,66 +55,23 @@ RELATIVE_TOLERANCE = 1e-8  # of the initial preconditioned residual
 MAX_ITERATIONS = 2000
 
 
+@njit(inline="always")
+def along_normal(d0, d1, d2, normal, j):
+    """(d . n_j) n_j, the pair direction e of a free-slip wall partner j (module docstring)."""
+    dn = d0 * normal[j, 0] + d1 * normal[j, 1] + (d2 * normal[j, 2] if normal.shape[1] == 3 else 0.0)
+    return dn * normal[j, 0], dn * normal[j, 1], (dn * normal[j, 2] if normal.shape[1] == 3 else 0.0)
+
+
 @njit(cache=True)
 def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor, mean,
-                  k, coef, e):
+                  k, dt, coef, inverse):
     """The pair term of Eq. 27 as a_visc[u]_i = sum_s coef_s e_s (e_s . (u_i - u_j)) over the
-    neighbour list: e_s = r_ij (a free-slip wall partner: (r_ij . n) n) and coef_s <= 0, beta of
-    Eq. 36 included for wall partners."""
+    neighbour list (e_s = r_ij, for a free-slip wall partner ``along_normal``; coef_s <= 0, beta
+    of Eq. 36 included for wall partners), and the preconditioner: inverse_i, the inverse of the
+    diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving particles (identity elsewhere).
+    Only coef is stored: the passes recompute e_s from the positions, at about the speed of
+    reading three stored numbers a pair and without their 24 bytes a pair (docs/PERFORMANCE.md)."""
     dim = xc.shape[1]
-    for i in range(n):
-        if kind[i] != MOVING:
-            continue
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            rho_j, eta_j, gamma_dot_j, beta = rho[j], eta[j], gamma_dot[j], 1.0
-            if is_wall(kind[j]):  # off the common path: the partner takes i's state
-                rho_j, eta_j, gamma_dot_j = rho[i], eta[i], gamma_dot[i]
-                beta = morris_beta(i, j, xc, normal, wall_distance, beta_max)
-                if kind[j] != WALL:  # free slip: normal relative velocity, force along the normal
-                    dn = d0 * normal[j, 0] + d1 * normal[j, 1] + (d2 * normal[j, 2] if dim == 3 else 0.0)
-                    d0, d1 = dn * normal[j, 0], dn * normal[j, 1]
-                    d2 = dn * normal[j, 2] if dim == 3 else 0.0
-            c = 0.0
-            if eta[i] + eta_j > 0.0:
-                eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
-                c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
-            coef[s] = c
-            e[s, 0] = d0
-            e[s, 1] = d1
-            e[s, 2] = d2
-
-
-@njit(cache=True)
-def viscous_acceleration(n, start, nbr, kind, coef, e, u, homogeneous, out):
-    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``; the wall partners'
-    velocity is taken as zero when ``homogeneous`` (the operator alone), else their wall velocity."""
-    dim = u.shape[1]
-    for i in range(n):
-        a0 = a1 = a2 = 0.0
-        if kind[i] == MOVING:
-            for s in range(start[i], start[i + 1]):
-                j = nbr[s]
-                w = 0.0 if homogeneous and is_wall(kind[j]) else 1.0
-                du = (u[i, 0] - w * u[j, 0]) * e[s, 0] + (u[i, 1] - w * u[j, 1]) * e[s, 1]
-                if dim == 3:
-                    du += (u[i, 2] - w * u[j, 2]) * e[s, 2]
-                c = coef[s] * du
-                a0 += c * e[s, 0]
-                a1 += c * e[s, 1]
-                a2 += c * e[s, 2]
-        out[i, 0] = a0
-        out[i, 1] = a1
-        if dim == 3:
-            out[i, 2] = a2
-
-
-@njit(cache=True)
-def preconditioner(n, start, kind, mass, coef, e, dt, inverse):
-    """inverse_i = the inverse of the diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving
-    particles (identity elsewhere)."""
-    dim = inverse.shape[1]
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
@@ -120,9 +80,23 @@ def preconditioner(n, start, kind, mass, coef, e, dt, inverse):
             block[a, a] = 1.0
         if kind[i] == MOVING:
             for s in range(start[i], start[i + 1]):
+                j = nbr[s]
+                d0, d1, d2, r = pair_offset(xc, i, j)
+                rho_j, eta_j, gamma_dot_j, beta = rho[j], eta[j], gamma_dot[j], 1.0
+                if is_wall(kind[j]):  # off the common path: the partner takes i's state
+                    rho_j, eta_j, gamma_dot_j = rho[i], eta[i], gamma_dot[i]
+                    beta = morris_beta(i, j, xc, normal, wall_distance, beta_max)
+                    if kind[j] == WALL_SLIP:
+                        d0, d1, d2 = along_normal(d0, d1, d2, normal, j)
+                c = 0.0
+                if eta[i] + eta_j > 0.0:
+                    eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
+                    c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
+                coef[s] = c
+                e = (d0, d1, d2)
                 for a in range(dim):
                     for b in range(dim):
-                        block[a, b] -= dt * coef[s] * e[s, a] * e[s, b]
+                        block[a, b] -= dt * c * e[a] * e[b]
             for a in range(dim):
                 for b in range(dim):
                     block[a, b] *= mass[i]
@@ -130,6 +104,35 @@ def preconditioner(n, start, kind, mass, coef, e, dt, inverse):
         for a in range(dim):
             for b in range(dim):
                 inverse[i, a, b] = adj[a, b] / det
+
+
+@njit(cache=True)
+def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, homogeneous, out):
+    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``; the wall partners'
+    velocity is taken as zero when ``homogeneous`` (the operator alone), else their wall velocity."""
+    dim = u.shape[1]
+    for i in range(n):
+        a0 = a1 = a2 = 0.0
+        if kind[i] == MOVING:
+            for s in range(start[i], start[i + 1]):
+                j = nbr[s]
+                e0, e1, e2 = pair_difference(xc, i, j)
+                w = 1.0
+                if is_wall(kind[j]):  # off the common path
+                    w = 0.0 if homogeneous else 1.0
+                    if kind[j] == WALL_SLIP:
+                        e0, e1, e2 = along_normal(e0, e1, e2, normal, j)
+                du = (u[i, 0] - w * u[j, 0]) * e0 + (u[i, 1] - w * u[j, 1]) * e1
+                if dim == 3:
+                    du += (u[i, 2] - w * u[j, 2]) * e2
+                c = coef[s] * du
+                a0 += c * e0
+                a1 += c * e1
+                a2 += c * e2
+        out[i, 0] = a0
+        out[i, 1] = a1
+        if dim == 3:
+            out[i, 2] = a2
 
 
 @njit(inline="always")
@@ -146,13 +149,23 @@ def _precondition(i, inverse, r, z):
 
 
 @njit(cache=True)
-def residual(n, kind, mass, dt, a_visc, r, inverse, z, p, terms):
-    """r = m dt a_visc[b] (the residual of the first guess u = b), z = p = inverse r, and the
-    terms of r . z; zero rows for particles that do not move."""
+def first_guess(n, kind, dt, a_last, u):
+    """u += dt a_last on the moving particles: the kicked velocity b plus the last step's viscous
+    acceleration, the first guess of the conjugate gradients."""
+    for i in range(n):
+        if kind[i] == MOVING:
+            for a in range(u.shape[1]):
+                u[i, a] += dt * a_last[i, a]
+
+
+@njit(cache=True)
+def residual(n, kind, mass, dt, a_visc, a_last, r, inverse, z, p, terms):
+    """r = m dt (a_visc[u0] - a_last), the residual of the first guess u0 = b + dt a_last,
+    z = p = inverse r, and the terms of r . z; zero rows for particles that do not move."""
     dim = r.shape[1]
     for i in range(n):
         for a in range(dim):
-            r[i, a] = mass[i] * dt * a_visc[i, a] if kind[i] == MOVING else 0.0
+            r[i, a] = mass[i] * dt * (a_visc[i, a] - a_last[i, a]) if kind[i] == MOVING else 0.0
         terms[0, i] = _precondition(i, inverse, r, z)
         for a in range(dim):
             p[i, a] = z[i, a]
@@ -215,25 +228,29 @@ class ImplicitViscosity:
         a_visc, r, z, q = (ws.get(name, n, (dim,)) for name in ("cg_a", "cg_r", "cg_z", "cg_q"))
         inverse = ws.get("cg_inverse", n, (dim, dim))
         terms = ws.get("cg_terms", n)[None, :]
-        pairs = len(ctx.nbr)
-        coef, e = ws.get("cg_coef", pairs), ws.get("cg_e", pairs, (3,))
+        coef = ws.get("cg_coef", len(ctx.nbr))
         p = pa.viscous_direction
         if self.total_mass is None:
             moving = (pa.kind[:n] == MOVING)[None, :]
             self.total_mass = global_sums(comm, np.where(moving, pa.mass[:n][None, :], 0.0))[0]
         viscous_pairs(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.gamma_dot, pa.mass, pa.kind, pa.normal,
-                      pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, coef, e)
-        preconditioner(n, ctx.start, pa.kind, pa.mass, coef, e, dt, inverse)
-        viscous_acceleration(n, ctx.start, ctx.nbr, pa.kind, coef, e, pa.v, False, a_visc)
-        residual(n, pa.kind, pa.mass, dt, a_visc, r, inverse, z, p, terms)
+                      pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, dt, coef, inverse)
+        b = ws.get("cg_b", n, (dim,))
+        b[:] = pa.v[:n]
+        a_last = pa.viscous_acceleration
+        first_guess(n, pa.kind, dt, a_last, pa.v)
+        ctx.refresh(["v"])
+        viscous_acceleration(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, coef, pa.v, False, a_visc)
+        residual(n, pa.kind, pa.mass, dt, a_visc, a_last, r, inverse, z, p, terms)
         rz = rz0 = global_sums(comm, terms)[0]
         floor = max(RELATIVE_TOLERANCE**2 * rz0, (TOLERANCE * self.u_ref) ** 2 * self.total_mass)
         for iteration in range(MAX_ITERATIONS + 1):
             if rz <= floor:
                 self.iterations = iteration
+                a_last[:n] = (pa.v[:n] - b) / dt
                 return
             ctx.refresh(["viscous_direction"])
-            viscous_acceleration(n, ctx.start, ctx.nbr, pa.kind, coef, e, p, True, a_visc)
+            viscous_acceleration(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, coef, p, True, a_visc)
             operator(n, pa.kind, pa.mass, dt, p, a_visc, q, terms)
             alpha = rz / global_sums(comm, terms)[0]
             advance(n, pa.kind, alpha, p, q, pa.v, r, inverse, z, terms)

@@ -314,7 +314,9 @@ class MuIScheme(Scheme):
         if self.implicit:
             self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
-                                  "search direction of the implicit viscous kick [m/s]"),)
+                                  "search direction of the implicit viscous kick [m/s]"),
+                            Field("viscous_acceleration", ("dim",), np.float64,
+                                  "viscous acceleration of the last implicit kick, its next first guess [m/s^2]"))
         self._no_T, self._no_B = np.zeros((0, 1, 1)), np.zeros((0, 1))
 
     def force_tensors(self, pa):
