@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall, limiter_param
+from mpisph.case import Body, Case, Fluid, Param, Wall, density_reinit_param, limiter_param
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -11,8 +11,7 @@ PARAMS = {
     "rho0": Param(1000.0, "kg/m^3", "water density", positive=True),
     "g": Param(9.81, "m/s^2", "gravity", positive=True),
     "wall": Param("no_slip", "-", "tank wall condition", choices=("no_slip", "free_slip")),
-    "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
-                            choices=("none", "free_surface")),
+    "density_reinit": density_reinit_param("free_surface", ("none", "free_surface")),
     "limiter": limiter_param("separating"),
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),

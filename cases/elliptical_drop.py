@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
-                         limiter_param)
+                         density_reinit_param, limiter_param)
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -12,8 +12,7 @@ PARAMS = {
     "A0": Param(100.0, "1/s", "initial stretching rate A(0)", positive=True),
     "rho0": Param(1000.0, "kg/m^3", "water density", positive=True),
     "c0": Param(1000.0, "m/s", "artificial sound speed (10 A0 R)", positive=True),
-    "density_reinit": Param("none", "-", "density reinitialisation (001_ Eq. 8)",
-                            choices=("none", "free_surface")),
+    "density_reinit": density_reinit_param("none", ("none", "free_surface")),
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,

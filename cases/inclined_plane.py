@@ -15,7 +15,7 @@ references.inclined_plane_velocity; 004_ reached it after about 6.5 s.
 import dataclasses
 import math
 
-from mpisph.case import Body, Case, MuIGranular, Param, Wall
+from mpisph.case import Body, Case, MuIGranular, Param, Wall, density_reinit_param
 from mpisph.geometry import bed, box, support_layers
 from mpisph.granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
 from mpisph.references import inclined_plane_surface_velocity
@@ -38,8 +38,7 @@ PARAMS = {
     "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55)", positive=True),
     "m_0": Param(1.0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
     **mu_i_params("004_ Fig. 6 also uses 0.05", "explicit"),
-    "density_reinit": Param("none", "-", "density reinitialisation by kernel summation (001_ Eq. 8) every "
-                            "configuration", choices=("none", "inner", "free_surface")),
+    "density_reinit": density_reinit_param("none"),
     "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
                            "(001_ Eqs. 9-11) keeps a configuration for 0.25 h/|v|, over which the sheared layer "
                            "dilates and runs away (docs/VALIDATION.md)", choices=("dual", "single")),

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param,
-                         fluid_stabiliser_param, limiter_param)
+                         density_reinit_param, fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -14,8 +14,7 @@ PARAMS = {
     "c0_factor": Param(10.0, "-", "sound speed over the largest initial speed omega L / sqrt(2)",
                        positive=True),
     "series_terms": Param(40, "-", "odd terms per index in the pressure series", positive=True),
-    "density_reinit": Param("free_surface", "-", "density reinitialisation (001_ Eq. 8)",
-                            choices=("none", "free_surface")),
+    "density_reinit": density_reinit_param("free_surface", ("none", "free_surface")),
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,

@@ -3,7 +3,7 @@
 import numpy as np
 
 from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
-                         limiter_param)
+                         density_reinit_param, limiter_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -12,8 +12,7 @@ PARAMS = {
     "U": Param(1.0, "m/s", "velocity amplitude", positive=True),
     "rho0": Param(1.0, "kg/m^3", "density", positive=True),
     "c0": Param(10.0, "m/s", "artificial sound speed (10 U)", positive=True),
-    "density_reinit": Param("inner", "-", "density reinitialisation (001_ Eq. 8)",
-                            choices=("none", "inner")),
+    "density_reinit": density_reinit_param("inner", ("none", "inner")),
     "stabiliser": fluid_stabiliser_param("tvf_limited", also={"tvf_limited": "001_ Eq. 16"}),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,

@@ -110,6 +110,15 @@ def fluid_stabiliser_param(default, also=None):
                  choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress"))
 
 
+def density_reinit_param(default, choices=("none", "inner", "free_surface"), why=""):
+    """The parameter choosing the density reinitialisation (Case.density_reinit), with the case's
+    default, the modes it offers and, in ``why``, the case's reason for its default."""
+    return Param(default, "-", "density by kernel summation (001_ Eq. 8) every configuration: inner, on every "
+                 "particle; free_surface, not below the evolved density's share near a free surface "
+                 "(physics/fluid.density_summation); none, continuity alone" + (f"; {why}" if why else ""),
+                 choices=choices)
+
+
 def limiter_param(default):
     """The parameter naming the pairs the Riemann dissipation limiter damps (the option ``limiter``
     of the schemes riemann_fluid and riemann_granular), with the case's default."""

@@ -10,14 +10,15 @@ a cube standing in the middle of a square floor with a low rim.
 
 import numpy as np
 
-from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params, limiter_param,
-                   scheme_keywords)
+from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params,
+                   density_reinit_param, limiter_param, scheme_keywords)
 from .geometry import block, depth_outside, support_layers, walls_around
 from .physics.drucker_prager import geostatic_stress
 
 
-def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
-    """Typed parameters of the soil with the given defaults, plus gravity and the solid scheme's."""
+def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
+    """Typed parameters of the soil with the given defaults, plus gravity, the density
+    reinitialisation and the solid scheme's."""
     return {
         "rho0": Param(rho0, "kg/m^3", "bulk density", positive=True),
         "E": Param(E, "Pa", "Young's modulus", positive=True),
@@ -26,6 +27,8 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0):
         "phi": Param(phi, "deg", "friction angle"),
         "psi": Param(psi, "deg", "dilatancy angle"),
         "g": Param(9.8, "m/s^2", "gravity", positive=True),
+        "density_reinit": density_reinit_param(density_reinit, why="000_ evolves the density by Eq. 16 alone, "
+                                               "the authors' code sums it for soils (docs/FLUME.md)"),
         **SOLID_PARAMS,
     }
 
@@ -88,5 +91,6 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
                     distance=depth_outside(tank_lo, tank_hi))],
         gravity=gravity,
         stabilisers=p.stabiliser,
+        density_reinit=p.density_reinit,
         u_ref=float(np.sqrt(2.0 * p.g * height)),
     )

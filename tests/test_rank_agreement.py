@@ -20,6 +20,9 @@ CASES = {
     "dam_break_2d": (["--set", "dp=0.05", "--t-end", "0.15", "--output-interval", "0.075"], 4.3),
     "taylor_green": (["--set", "nx=30", "--t-end", "0.5", "--output-interval", "0.25"], 1.0),
     "column_collapse_2d": (["--set", "dp=0.01", "--t-end", "0.04", "--output-interval", "0.02"], 0.6),
+    # the soil's density by kernel summation every configuration (free_surface: the blend near the surface)
+    "column_collapse_2d reinit": (["--set", "dp=0.01", "density_reinit=free_surface", "--t-end", "0.04",
+                                   "--output-interval", "0.02"], 0.6),
     # TVF: the shift on inner particles only (a key's first word is the case)
     "column_collapse_2d tvf": (["--set", "dp=0.01", "stabiliser=tvf", "--t-end", "0.04", "--output-interval",
                                 "0.02"], 0.6),

@@ -54,6 +54,7 @@ from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import SYM3, unpack_row
 from .drucker_prager import PLASTIC_STRAIN, plastic_stress_rate, return_mapping
+from .fluid import reinitialise_density
 from .mu_i import continuity
 from .solid import STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times, velocity_gradient
 from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
@@ -208,6 +209,8 @@ class ClassicGranular(Scheme):
 
     def configure(self, ctx):
         ctx.refresh(["wall_distance"])
+        if reinitialise_density(ctx, self):
+            ctx.refresh(["rho"])
 
     def state(self, ctx):
         pa = ctx.particles

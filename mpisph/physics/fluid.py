@@ -185,6 +185,18 @@ def density_summation(n, start, nbr, xc, kind, mass, rho, rho0, k, lattice_sum, 
             rho[i] = rho_sum
 
 
+def reinitialise_density(ctx, scheme):
+    """The density of the owned moving particles by ``density_summation``, in a scheme's
+    ``configure``, unless its ``density_reinit`` (Case.density_reinit) is "none"; returns whether
+    it did (the caller then sends rho to the ghosts, with whatever it derives from it)."""
+    if scheme.density_reinit == "none":
+        return False
+    pa = ctx.particles
+    density_summation(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, scheme.material.rho0,
+                      ctx.kernel.params, scheme.lattice_sum, scheme.density_reinit == "free_surface")
+    return True
+
+
 class Viscosity(ForceTerm):
     """001_ Eq. 7 from the velocities of the configuration (frozen over it)."""
 
@@ -237,8 +249,6 @@ class RiemannFluid(Scheme):
         super().__init__(case, kernel)
         self.damped = limited_pairs_sign(self)
         self.gravity = case.gravity
-        self.density_reinit = case.density_reinit
-        self.lattice_sum = kernel.lattice_sum(case.dp)
 
     def initial_density(self, pressure):
         return self.material.rho0 + pressure / self.material.c0**2
@@ -251,14 +261,10 @@ class RiemannFluid(Scheme):
         return (Viscosity(self.material.viscosity), RiemannPressure(self.material.c0, self.gravity, self.damped))
 
     def configure(self, ctx):
-        if self.density_reinit == "none":
-            return
         pa, m = ctx.particles, self.material
-        n = pa.n_owned
-        density_summation(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, m.rho0, ctx.kernel.params,
-                          self.lattice_sum, self.density_reinit == "free_surface")
-        equation_of_state(n, pa.kind, pa.rho, pa.p, m.rho0, m.c0)
-        ctx.refresh(["rho", "p"])
+        if reinitialise_density(ctx, self):
+            equation_of_state(pa.n_owned, pa.kind, pa.rho, pa.p, m.rho0, m.c0)
+            ctx.refresh(["rho", "p"])
 
     def state(self, ctx):
         pa, m = ctx.particles, self.material

@@ -61,7 +61,7 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
-from .fluid import density_summation
+from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
                        regularised_viscosity)
@@ -295,8 +295,6 @@ class MuIScheme(Scheme):
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
-        self.density_reinit = case.density_reinit
-        self.lattice_sum = kernel.lattice_sum(case.dp)
         require_wall_distances(case, self.name)
         self.fields = (
             Field("strain", ("sym",), np.float64, "strain-rate tensor eps, packed (tensors.py) [1/s]"),
@@ -330,11 +328,8 @@ class MuIScheme(Scheme):
         return (GranularMomentum(self),)
 
     def configure(self, ctx):
-        pa = ctx.particles
         ctx.refresh(["wall_distance"])
-        if self.density_reinit != "none":
-            density_summation(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.mass, pa.rho, self.material.rho0,
-                              ctx.kernel.params, self.lattice_sum, self.density_reinit == "free_surface")
+        if reinitialise_density(ctx, self):
             ctx.refresh(["rho"])
 
     def start(self, ctx):

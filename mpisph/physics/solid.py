@@ -73,7 +73,7 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
-from .fluid import continuity
+from .fluid import continuity, reinitialise_density
 from .walls import morris_relative_velocity, wall_relative_velocity
 
 
@@ -340,7 +340,10 @@ class SolidScheme(Scheme):
         return (RiemannStress(self.material.c0, self.eta, self.damped, self.corrected_shear_force),)
 
     def configure(self, ctx):
-        """Correction matrices on the frozen positions (ghosts too when the momentum sum reads them)."""
+        """With ``Case.density_reinit`` the density by kernel summation (fluid.py), then the
+        correction matrices on the frozen positions (ghosts too when the momentum sum reads them)."""
+        if reinitialise_density(ctx, self):
+            ctx.refresh(["rho"])
         ctx.correction_matrices()  # into pa.B
         if self.corrected_shear_force:
             ctx.refresh(["B"])
