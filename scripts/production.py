@@ -188,7 +188,8 @@ def flume_3d(ranks, reuse):
         "## The flume (000_ Sec. 5.4, Fig. 25)",
         "",
         f"`{cmd}`: {n} soil particles and {len(first['x']) - n} wall particles, dp = 0.04 m, UTVF, to t = 4 s: "
-        f"**wall time {wall:.0f} s, {rate:.3g} particle-steps/s/core**. Geometry: docs/FLUME.md.",
+        f"**wall time {wall:.0f} s, {rate:.3g} particle-steps/s/core**. Geometry: docs/FLUME.md. The density by kernel "
+        "summation (the case's default since session 21; docs/FLUME.md has the run with 000_'s Eq. 16 beside it).",
         "",
         *([f"**The run stopped at t = {d['t'][-1]:.2f} s: {blow_up}.** The figures below are up to that "
            f"time. Soil particles more than dp/2 behind a side wall or the floor at the end: {leaked}: "

@@ -1,0 +1,52 @@
+"""Where a deposit is not yet at rest: the speeds and densities of a run's moving particles.
+
+    .venv/bin/python scripts/at_rest.py RUN [--every 5] [--fastest 10]
+
+Per frame (every ``--every``-th and the last): the largest speed and its fraction of the run's
+peak, the 99.9th and 99th percentiles, the mean, the number of particles above 1 % of the peak,
+and the density range over rho0 with the number of particles beyond 1.5 rho0; then the
+``--fastest`` particles of the last frame with their place, velocity, density, pressure and
+distance to the nearest other particle (walls included).
+"""
+
+import argparse
+
+import numpy as np
+
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.particles import MOVING
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run")
+    ap.add_argument("--every", type=int, default=5)
+    ap.add_argument("--fastest", type=int, default=10)
+    a = ap.parse_args()
+    paths = list_frames(a.run)
+    frames = [read_frame(p) for p in paths]
+    rho0 = float(frames[0]["params"]["rho0"])
+    speeds = [np.linalg.norm(f["v"][f["kind"] == MOVING], axis=1) for f in frames]
+    peak = max(s.max() for s in speeds)
+    print(f"peak speed {peak:.4g} m/s; rho0 {rho0:g} kg/m^3")
+    print("t [s] | max speed (of peak) | 99.9 % | 99 % | mean | above 1 % of peak | rho / rho0 | above 1.5 rho0")
+    for k, (f, s) in enumerate(zip(frames, speeds)):
+        if k % a.every and k != len(frames) - 1:
+            continue
+        rho = f["rho"][f["kind"] == MOVING] / rho0
+        print(f"{f['t']:.2f} | {s.max():.3g} ({s.max() / peak:.3f}) | {np.percentile(s, 99.9):.3g} | "
+              f"{np.percentile(s, 99):.3g} | {s.mean():.3g} | {np.sum(s > 0.01 * peak)} | "
+              f"{rho.min():.3f}-{rho.max():.3f} | {np.sum(rho > 1.5)}")
+    last, s = frames[-1], speeds[-1]
+    moving = np.flatnonzero(last["kind"] == MOVING)
+    print(f"fastest at t = {last['t']:.2f} s: gid, x [m], v [m/s], rho / rho0, p [Pa], nearest / dp")
+    dp = float(last["params"]["dp"])
+    for i in moving[np.argsort(s)[::-1][:a.fastest]]:
+        d = np.linalg.norm(last["x"] - last["x"][i], axis=1)
+        d[i] = np.inf
+        print(f"{last['gid'][i]} {np.round(last['x'][i], 3)} {np.round(last['v'][i], 3)} {last['rho'][i] / rho0:.3f} "
+              f"{last['p'][i]:.4g} {d.min() / dp:.2f}")
+
+
+if __name__ == "__main__":
+    main()
