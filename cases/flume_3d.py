@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mpisph.case import Body, Case, DruckerPrager, Front, Param, Wall
+from mpisph.case import Body, Case, DruckerPrager, Front, Param, Wall, limiter_param
 from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
 from mpisph.lattice import Frame
@@ -48,6 +48,7 @@ PARAMS = {
     # 000_ Table 2, second column; the density by kernel summation, as the authors' code does for soils:
     # evolved by Eq. 16 alone it drifts without bound in the resting deposit (docs/FLUME.md)
     **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0, density_reinit="free_surface"),
+    "limiter": limiter_param("separating"),
     "t_end": Param(4.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }
@@ -90,6 +91,7 @@ def setup(p):
         dp=p.dp,
         material=DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi),
         scheme="riemann_granular",
+        scheme_options={"limiter": p.limiter},
         bodies=[Body("soil", fill(soil, p.dp, slope))],
         walls=walls,
         gravity=(0.0, 0.0, -p.g),
