@@ -23,21 +23,23 @@ def main():
     ap.add_argument("--every", type=int, default=5)
     ap.add_argument("--fastest", type=int, default=10)
     a = ap.parse_args()
-    paths = list_frames(a.run)
-    frames = [read_frame(p) for p in paths]
-    rho0 = float(frames[0]["params"]["rho0"])
-    speeds = [np.linalg.norm(f["v"][f["kind"] == MOVING], axis=1) for f in frames]
-    peak = max(s.max() for s in speeds)
+    rows = []  # per frame: t, the moving particles' speeds, rho / rho0 (least, largest, beyond 1.5)
+    for path in list_frames(a.run):  # one frame in memory at a time; the last one is kept
+        last = read_frame(path)
+        rho0 = float(last["params"]["rho0"])
+        moving = last["kind"] == MOVING
+        rho = last["rho"][moving] / rho0
+        rows.append((last["t"], np.linalg.norm(last["v"][moving], axis=1), rho.min(), rho.max(), np.sum(rho > 1.5)))
+    peak = max(row[1].max() for row in rows)
     print(f"peak speed {peak:.4g} m/s; rho0 {rho0:g} kg/m^3")
     print("t [s] | max speed (of peak) | 99.9 % | 99 % | mean | above 1 % of peak | rho / rho0 | above 1.5 rho0")
-    for k, (f, s) in enumerate(zip(frames, speeds)):
-        if k % a.every and k != len(frames) - 1:
+    for k, (t, s, rho_min, rho_max, dense) in enumerate(rows):
+        if k % a.every and k != len(rows) - 1:
             continue
-        rho = f["rho"][f["kind"] == MOVING] / rho0
-        print(f"{f['t']:.2f} | {s.max():.3g} ({s.max() / peak:.3f}) | {np.percentile(s, 99.9):.3g} | "
+        print(f"{t:.2f} | {s.max():.3g} ({s.max() / peak:.3f}) | {np.percentile(s, 99.9):.3g} | "
               f"{np.percentile(s, 99):.3g} | {s.mean():.3g} | {np.sum(s > 0.01 * peak)} | "
-              f"{rho.min():.3f}-{rho.max():.3f} | {np.sum(rho > 1.5)}")
-    last, s = frames[-1], speeds[-1]
+              f"{rho_min:.3f}-{rho_max:.3f} | {dense}")
+    s = rows[-1][1]
     moving = np.flatnonzero(last["kind"] == MOVING)
     print(f"fastest at t = {last['t']:.2f} s: gid, x [m], v [m/s], rho / rho0, p [Pa], nearest / dp")
     dp = float(last["params"]["dp"])
