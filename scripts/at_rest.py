@@ -5,8 +5,10 @@
 Per frame (every ``--every``-th and the last): the largest speed and its fraction of the run's
 peak, the 99.9th and 99th percentiles, the mean, the number of particles above 1 % of the peak,
 and the density range over rho0 with the number of particles beyond 1.5 rho0; then the
-``--fastest`` particles of the last frame with their place, velocity, density, pressure and
-distance to the nearest other particle (walls included).
+``--fastest`` particles of the last frame with their place, velocity, the speed at which they
+moved since the frame before (displacement over the frame interval: a particle whose velocity the
+transport-velocity shift cancels has a velocity but does not move), density, pressure and distance
+to the nearest other particle (walls included).
 """
 
 import argparse
@@ -24,8 +26,9 @@ def main():
     ap.add_argument("--fastest", type=int, default=10)
     a = ap.parse_args()
     rows = []  # per frame: t, the moving particles' speeds, rho / rho0 (least, largest, beyond 1.5)
-    for path in list_frames(a.run):  # one frame in memory at a time; the last one is kept
-        last = read_frame(path)
+    last = None
+    for path in list_frames(a.run):  # one frame in memory at a time; the last two are kept
+        before, last = last, read_frame(path)
         rho0 = float(last["params"]["rho0"])
         moving = last["kind"] == MOVING
         rho = last["rho"][moving] / rho0
@@ -41,13 +44,23 @@ def main():
               f"{rho_min:.3f}-{rho_max:.3f} | {dense}")
     s = rows[-1][1]
     moving = np.flatnonzero(last["kind"] == MOVING)
-    print(f"fastest at t = {last['t']:.2f} s: gid, x [m], v [m/s], rho / rho0, p [Pa], nearest / dp")
+    print(f"fastest at t = {last['t']:.2f} s: gid, x [m], v [m/s], moved since the frame before [m/s], "
+          "rho / rho0, p [Pa], nearest / dp")
     dp = float(last["params"]["dp"])
     for i in moving[np.argsort(s)[::-1][:a.fastest]]:
         d = np.linalg.norm(last["x"] - last["x"][i], axis=1)
         d[i] = np.inf
-        print(f"{last['gid'][i]} {np.round(last['x'][i], 3)} {np.round(last['v'][i], 3)} {last['rho'][i] / rho0:.3f} "
-              f"{last['p'][i]:.4g} {d.min() / dp:.2f}")
+        print(f"{last['gid'][i]} {np.round(last['x'][i], 3)} {np.round(last['v'][i], 3)} "
+              f"{moved(before, last, i):.3g} {last['rho'][i] / rho0:.3f} {last['p'][i]:.4g} {d.min() / dp:.2f}")
+
+
+def moved(before, last, i):
+    """The distance particle i of frame ``last`` moved since frame ``before`` over their interval
+    (nan without a frame before)."""
+    if before is None:
+        return float("nan")
+    k = np.flatnonzero(before["gid"] == last["gid"][i])[0]
+    return float(np.linalg.norm(last["x"][i] - before["x"][k]) / (last["t"] - before["t"]))
 
 
 if __name__ == "__main__":
