@@ -41,7 +41,10 @@ particle's density, a pressure extrapolated hydrostatically,
 p_i + rho_i max(0, -g.r_ij), and a mirrored velocity 2 v_w - v_i (no-slip,
 kind WALL) or one with only the normal component mirrored (free-slip, kind
 WALL_SLIP). The viscous term uses v_i - v_w (no-slip) or its normal part
-(free-slip).
+(free-slip). A free-slip partner's pressure acts along the wall's normal
+(walls.along_wall_normal: the continuity sees only the mirrored normal
+velocity, so only that direction keeps the pressure's work equal to what the
+density stores; solid.py gives the derivation).
 """
 
 from numba import njit
@@ -52,7 +55,7 @@ from ..materials import Fluid
 from ..neighbours import pair_difference, pair_distance, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..scheme import Scheme
-from .walls import wall_relative_normal, wall_relative_velocity
+from .walls import along_wall_normal, wall_relative_normal, wall_relative_velocity
 
 RIEMANN_ETA = 3.0
 # The pairs the dissipation limiter damps (the schemes' option ``limiter``): the sign of u_jump
@@ -100,6 +103,8 @@ def pressure_acceleration(n, start, nbr, xc, v, rho, p, mass, kind, normal, grav
             if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 rho_j, p_j = _wall_state(i, j, xc, rho, p, gravity)
+                if kind[j] == WALL_SLIP:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = min(RIEMANN_ETA * max(damped * u_jump / c0, 0.0), 1.0)
             p_star = 0.5 * (p[i] + p_j) - 0.25 * beta * (rho[i] + rho_j) * c0 * u_jump

@@ -58,7 +58,16 @@ the wall (n-t) then cancels in the pair sum s_i + R s_i R and the wall pushes
 only along its normal, which is what free slip means: taking s_i unmirrored,
 as for a no-slip wall, left a tangential traction 2 s_nt on the particles
 beside it, and in flume_3d a layer along each free-slip side wall kept
-sliding at 0.2 m/s after the mass had come to rest.
+sliding at 0.2 m/s after the mass had come to rest. The pair offset to a
+free-slip partner is taken along the wall's normal, g -> (g . n) n
+(walls.along_wall_normal), in the momentum and in the velocity gradient: the
+mirror image lies along n. With the offset itself, where the wall lattice is
+not symmetric about the particle (a joint of two wall parts, a corner) the
+tangential gradients g_t of the wall partners do not cancel, the wall pushed
+along itself (2 sigma_tt g_t) and the shear strain rate of the normal motion
+(n (x) g_t) stored work no force did: the pair power 2 V_i V_j (v_n sigma_nn g_n
++ v_t . sigma_tt g_t) against 2 V_i V_j v_n (sigma_nn g_n + sigma_nt . g_t)
+(tests/test_free_slip_walls.py checks they now agree on a jittered wall).
 
 The order of the sub-steps of a time step is the integrator's
 (integrators/position_verlet.py).
@@ -74,7 +83,7 @@ from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity, reinitialise_density
-from .walls import morris_relative_velocity, wall_relative_velocity
+from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
 
 
 STRESS = Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]")
@@ -99,6 +108,8 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distan
         d0, d1, d2, r = pair_offset(xc, i, j)
         u0, u1, u2 = pair_difference(v, i, j)
         if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
+            if kind[j] == WALL_SLIP:
+                d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             if beta_max > 0.0:
                 u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
             else:
@@ -217,6 +228,8 @@ def stress_acceleration(n, start, nbr, xc, v, rho, p, T, mass, kind, normal, c0,
                 u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
                 q = i
                 mirror = kind[j] == WALL_SLIP
+                if mirror:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             u_jump = (u0 * d0 + u1 * d1 + u2 * d2) / r
             beta = 1.0 if eta <= 0.0 else min(eta * max(damped * u_jump / c0, 0.0), 1.0)
             pressure = p[i] + p[q] - beta * 0.5 * (rho[i] + rho[q]) * c0 * u_jump
