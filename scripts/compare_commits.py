@@ -61,6 +61,7 @@ RUNS = {
     "cohesive_failure_2d": ("cohesive_failure_2d", ["--set", "dp=0.2", "--t-end", "0.2"]),
     "cube_failure_3d": ("cube_failure_3d", ["--set", "dp=0.25", "--t-end", "0.2"]),
     "dam_break_3d": ("dam_break_3d", ["--set", "dp=0.15", "--t-end", "0.1"]),
+    "flume_3d": ("flume_3d", ["--set", "dp=0.1", "--t-end", "0.2"]),  # free-slip side walls
     "vertical_cut classic": ("vertical_cut", ["--set", "dp=0.1", "scheme=classic_granular",
                                               "stabiliser=artificial_stress", "--t-end", "0.1"]),
     "inclined_plane": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
