@@ -1,6 +1,6 @@
 """Free-slip walls (walls.along_wall_normal) on a wall lattice that is not regular: the wall pushes
-only along its normal, and its pairs do the work that the strain rate (solids) or the density
-(fluids) stores, as pairs of material particles do."""
+only along its normal (Riemann solids and fluids, mu(I)), and its pairs do the work that the strain
+rate (solids) or the density (fluids) stores, as pairs of material particles do."""
 
 import numpy as np
 import pytest
@@ -9,6 +9,8 @@ from mpisph.kernels import Kernel
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL_SLIP
 from mpisph.physics.fluid import continuity, pressure_acceleration
+from mpisph.physics.mu_i import momentum
+from mpisph.physics.mu_i_law import MEAN_ARITHMETIC
 from mpisph.physics.solid import stress_acceleration, velocity_gradient
 from mpisph.tensors import packed
 
@@ -120,3 +122,24 @@ def test_a_free_slip_wall_takes_the_fluid_pressure_along_its_normal_only():
                           np.full(n, 1000 * DP**2), kind, normal[:n], no_gravity, c0, no_limiter, KERNEL, alone)
     assert alone[0, 1] > 1.0
     assert alone[0, 0] == 0.0
+
+
+def test_a_free_slip_morris_wall_takes_the_mu_i_pressure_along_its_normal_only():
+    """The mu(I) scheme's pressure pairs (004_ Eq. 27) with a jittered free-slip Morris floor: no
+    force along the floor on a particle alone above it."""
+    rng = np.random.default_rng(13)
+    x = np.concatenate([[[6 * DP, 0.6 * DP]], jittered_floor(rng)])
+    n = len(x)
+    kind = np.full(n, WALL_SLIP, np.int8)
+    kind[0] = MOVING
+    normal = np.zeros_like(x)
+    normal[:, 1] = 1.0
+    wall_distance = np.maximum(-x[:, 1], 0.0)
+    start, nbr = neighbour_lists(x, np.arange(n), kind, n, 2 * H, x.min(axis=0) - DP)
+    acc = np.zeros((n, 2))
+    zero = np.zeros(n)
+    momentum(n, start, nbr, x, np.zeros((n, 2)), np.full(n, 1000.0), np.full(n, 1e3), zero, zero,
+             np.zeros((0, 2, 2)), np.full(n, 1000 * DP**2), kind, normal, wall_distance, 1.5, 0.0, 20.0, 0.0,
+             MEAN_ARITHMETIC, KERNEL, acc)
+    assert acc[0, 1] > 1.0
+    assert acc[0, 0] == 0.0

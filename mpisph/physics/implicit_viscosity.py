@@ -48,25 +48,18 @@ from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
 from ..tensors import adjugate
 from .mu_i_law import pair_viscosity
-from .walls import morris_beta
+from .walls import along_wall_normal, morris_beta
 
 TOLERANCE = 1e-7  # of the reference speed, RMS over the particles
 RELATIVE_TOLERANCE = 1e-8  # of the initial preconditioned residual
 MAX_ITERATIONS = 2000
 
 
-@njit(inline="always")
-def along_normal(d0, d1, d2, normal, j):
-    """(d . n_j) n_j, the pair direction e of a free-slip wall partner j (module docstring)."""
-    dn = d0 * normal[j, 0] + d1 * normal[j, 1] + (d2 * normal[j, 2] if normal.shape[1] == 3 else 0.0)
-    return dn * normal[j, 0], dn * normal[j, 1], (dn * normal[j, 2] if normal.shape[1] == 3 else 0.0)
-
-
 @njit(cache=True)
 def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor, mean,
                   k, dt, coef, inverse):
     """The pair term of Eq. 27 as a_visc[u]_i = sum_s coef_s e_s (e_s . (u_i - u_j)) over the
-    neighbour list (e_s = r_ij, for a free-slip wall partner ``along_normal``; coef_s <= 0, beta
+    neighbour list (e_s = r_ij, for a free-slip wall partner walls.along_wall_normal; coef_s <= 0, beta
     of Eq. 36 included for wall partners), and the preconditioner: inverse_i, the inverse of the
     diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving particles (identity elsewhere).
     Only coef is stored: the passes recompute e_s from the positions, at about the speed of
@@ -87,7 +80,7 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                     rho_j, eta_j, gamma_dot_j = rho[i], eta[i], gamma_dot[i]
                     beta = morris_beta(i, j, xc, normal, wall_distance, beta_max)
                     if kind[j] == WALL_SLIP:
-                        d0, d1, d2 = along_normal(d0, d1, d2, normal, j)
+                        d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
                 c = 0.0
                 if eta[i] + eta_j > 0.0:
                     eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
@@ -121,7 +114,7 @@ def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, homogeneous, 
                 if is_wall(kind[j]):  # off the common path
                     w = 0.0 if homogeneous else 1.0
                     if kind[j] == WALL_SLIP:
-                        e0, e1, e2 = along_normal(e0, e1, e2, normal, j)
+                        e0, e1, e2 = along_wall_normal(j, normal, e0, e1, e2)
                 du = (u[i, 0] - w * u[j, 0]) * e0 + (u[i, 1] - w * u[j, 1]) * e1
                 if dim == 3:
                     du += (u[i, 2] - w * u[j, 2]) * e2

@@ -35,7 +35,10 @@ kernel summation (001_ Eq. 8, fluid.py) once per configuration.
 
 Walls are the ghost particles of Morris et al. (Eqs. 34-36, walls.py): a wall
 partner takes the density, pressure and viscosity of particle i and the
-relative velocity beta (v_i - v_w).
+relative velocity beta (v_i - v_w), only its normal part on a free-slip wall,
+where the pair offset is taken along the wall's normal in the strain rate and
+the momentum (walls.along_wall_normal, as the Riemann schemes and the implicit
+kick do: the wall pushes only along its normal, however irregular its lattice).
 
 The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
 acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
@@ -58,14 +61,14 @@ from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..materials import MuIGranular
 from ..neighbours import pair_difference, pair_offset
-from ..particles import MOVING, Field, is_wall
+from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
                        regularised_viscosity)
-from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
+from .walls import WALL_DISTANCE, along_wall_normal, morris_relative_velocity, require_wall_distances
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
 
@@ -89,6 +92,8 @@ def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, be
             if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
                 rho_j = rho[i]
+                if kind[j] == WALL_SLIP:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
             m00 += f * u0 * d0
             m01 += f * u0 * d1
@@ -168,6 +173,8 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
             if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
                 rho_j, p_j, eta_j, gamma_dot_j, tj = rho[i], p[i], eta[i], gamma_dot[i], i
+                if kind[j] == WALL_SLIP:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             rho_j2 = rho_j * rho_j
             vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
             scalar = -(p[i] / rho_i2 + p_j / rho_j2)
