@@ -41,10 +41,11 @@ def require_wall_distances(case, scheme):
 @njit(inline="always")
 def along_wall_normal(j, normal, d0, d1, d2):
     """(d . n_j) n_j as three scalars: the pair offset d = x_i - x_j to free-slip wall particle j
-    taken along the wall's normal, where the mirror image of i lies. The Riemann schemes' pairs with
-    a free-slip wall use it in the momentum and the velocity gradient alike: the wall then pushes only
-    along its normal, and the pair forces do the work the strain rate stores, however irregular the
-    wall lattice (physics/solid.py); on a regular flat wall the parts along it cancel anyway."""
+    taken along the wall's normal, where the mirror image of i lies. Every scheme's pairs with a
+    free-slip wall use it in the momentum and the velocity gradient (or strain rate) alike, and the
+    mu(I) implicit kick in its pair directions: the wall then pushes only along its normal, and the
+    pair forces do the work the strain rate stores, however irregular the wall lattice
+    (physics/solid.py); on a regular flat wall the parts along it cancel anyway."""
     n2 = normal[j, 2] if normal.shape[1] == 3 else 0.0
     dn = d0 * normal[j, 0] + d1 * normal[j, 1] + d2 * n2
     return dn * normal[j, 0], dn * normal[j, 1], dn * n2
