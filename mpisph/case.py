@@ -22,6 +22,7 @@ from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: 
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
 from .stabilisers.shifting import COEFFICIENT
+from .stabilisers.transport_velocity import EDGE_NEIGHBOURS
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
@@ -155,6 +156,10 @@ SOLID_PARAMS = {
                         choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
     **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
+    "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "3D free-surface particles within h of an edge or "
+                                  "corner (div r < 0.6 d) with stabiliser=utvf: kept in place (mpisph; a perfect "
+                                  "lattice stays regular, stabilisers/transport_velocity.py) or shifted (000_ Eq. 37 "
+                                  "as printed)", choices=EDGE_NEIGHBOURS),
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),
