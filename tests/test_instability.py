@@ -1,5 +1,8 @@
 """The tensile-instability measure sees clusters and inner voids, and nothing on a lattice."""
 
+import importlib.util
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -40,6 +43,17 @@ def test_close_pairs_are_clusters():
     m = tensile_instability(lattice_frame(squeeze=[100, 200, 300]))
     assert m["clustering"] * m["n"] == pytest.approx(6)  # three pairs
     assert m["min_spacing"] == pytest.approx(0.3)
+
+
+def test_the_clustered_script_finds_the_same_pairs():
+    spec = importlib.util.spec_from_file_location("clustered", Path(__file__).parent.parent / "scripts" / "clustered.py")
+    clustered = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(clustered)
+    frame = lattice_frame(squeeze=[100, 200, 300])
+    dp, i, j = clustered.clustered_pairs(frame)
+    assert dp == pytest.approx(0.01)
+    assert sorted(i) == [100, 130, 200, 230, 300, 330]  # each squeezed particle and its right-hand neighbour
+    assert all(abs(a - b) == 30 for a, b in zip(i, j))
 
 
 def test_report_command(tmp_path):
