@@ -156,10 +156,10 @@ SOLID_PARAMS = {
                         choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
     **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
-    "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "3D free-surface particles within h of an edge or "
-                                  "corner (div r < 0.6 d) with stabiliser=utvf: kept in place (mpisph; a perfect "
-                                  "lattice stays regular, stabilisers/transport_velocity.py) or shifted (000_ Eq. 37 "
-                                  "as printed)", choices=EDGE_NEIGHBOURS),
+    "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "
+                                  "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
+                                  "or kept in place, so that a perfect lattice stays regular "
+                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS),
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

@@ -4,8 +4,8 @@
 
 For each frame: how many moving particles are clustered, and how they split by free-surface class
 (the frame's ``surface`` field: inner, near-surface, outermost, splashed), by the sign of their pressure
-(p = -tr(sigma)/3 for solids: tension is p < 0) and by whether their nearest partner is a wall
-particle; the median distance to that partner and the median height of the clustered particles. This
+(p = -tr(sigma)/3 for solids: tension is p < 0), by whether their nearest partner is a wall
+particle and, in 3D, by whether 3D UTVF with utvf_edge_neighbours=kept would leave them unshifted; the median distance to that partner and the median height of the clustered particles. This
 is the first thing to know when a clustering figure misses: tension inside the body, a free surface,
 or a wall.
 """
@@ -18,6 +18,7 @@ from mpisph.instability import CLUSTER_DISTANCE
 from mpisph.io.frames import read_frame
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING
+from mpisph.stabilisers.transport_velocity import NO_SHIFT_DIVERGENCE
 
 CLASSES = ("inner", "near-surface", "outermost", "splashed")
 
@@ -42,8 +43,30 @@ def clustered_pairs(frame):
     return dp, order[mine], order[partner]
 
 
+def beside_an_edge(frame):
+    """Mask of the free-surface particles (near-surface or outermost, div r >= 0.6 d) that have a
+    material neighbour with div r < 0.6 d within h: those 3D UTVF with utvf_edge_neighbours=kept
+    leaves unshifted (stabilisers/transport_velocity.py)."""
+    x, kind = frame["x"], frame["kind"]
+    moving = kind == MOVING
+    dim = x.shape[1]
+    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
+    order = np.argsort(~moving, kind="stable")
+    n_moving = int(moving.sum())
+    h = float(frame["params"].get("h_factor", 1.3)) * dp
+    start, nbr = neighbour_lists(x[order], frame["gid"][order], kind[order], n_moving, h, x.min(axis=0))
+    div, cls = frame["div_r"][order], frame["surface"][order]
+    low = (div < NO_SHIFT_DIVERGENCE * dim) & (kind[order] == MOVING)
+    mask = np.zeros(len(x), bool)
+    for i in range(n_moving):
+        if cls[i] in (1, 2) and not low[i] and low[nbr[start[i]:start[i + 1]]].any():
+            mask[order[i]] = True
+    return mask
+
+
 def describe(path):
     frame = read_frame(path, walls=True)
+    dim = frame["x"].shape[1]
     dp, i, j = clustered_pairs(frame)
     n = int(np.sum(frame["kind"] == MOVING))
     print(f"{path}: t = {frame['t']:.4g} s, {len(i)} of {n} moving particles clustered ({100 * len(i) / n:.3f} %)")
@@ -56,6 +79,9 @@ def describe(path):
         p = frame["p"][i]
         print(f"  in tension (p < 0): {int(np.sum(p < 0))}, median p {np.median(p):.4g} Pa")
     print(f"  nearest partner a wall particle: {int(np.sum(frame['kind'][j] != MOVING))}")
+    if dim == 3 and "div_r" in frame:
+        print(f"  free-surface particles beside an edge (utvf_edge_neighbours=kept leaves them unshifted): "
+              f"{int(np.sum(beside_an_edge(frame)[i]))}")
     d = np.linalg.norm(frame["x"][i] - frame["x"][j], axis=1) / dp
     height = frame["x"][i, -1]
     print(f"  distance to it: median {np.median(d):.3f} dp, smallest {d.min():.3f} dp; median height {np.median(height):.3g} m")

@@ -41,6 +41,9 @@ CASES = {
     "soil_cylinder_impact": (["--set", "dp=0.001", "stabiliser=artificial_stress", "--t-end", "0.004",
                               "--output-interval", "0.002"], 0.2),
     "cube_failure_3d": (["--set", "dp=0.2", "--t-end", "0.8", "--output-interval", "0.4"], 5.6),
+    # 3D UTVF with the free-surface particles beside an edge kept in place: the neighbours' div r from ghosts
+    "cube_failure_3d edges_kept": (["--set", "dp=0.2", "utvf_edge_neighbours=kept", "--t-end", "0.8",
+                                    "--output-interval", "0.4"], 5.6),
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),

@@ -1,9 +1,9 @@
 """The UTVF shift (mpisph/stabilisers/transport_velocity.py, 000_ Eqs. 30-37) repeated alone on a
 block of particles, its free-surface classes and B recomputed before every shift as in a run.
 
-- A perfect lattice is regular, so the shift must leave it where it is: in 2D Eq. 37 as printed does,
-  in 3D only with the face particles beside an edge kept in place.
-- Those particles are still shifted along a face away from any edge.
+- A perfect lattice is regular, so the shift should leave it where it is: in 2D Eq. 37 as printed
+  does, in 3D only with utvf_edge_neighbours=kept (the face particles beside an edge kept in place).
+- With that option a face particle away from the edges is still shifted along the face.
 - From a jittered block, the kept rule regularises; as printed the 3D block's faces crowd into
   its edges.
 """

@@ -17,11 +17,11 @@ gradient corrected by B (Eqs. 32-35; one material, walls count as filled
 space, so grad C_i = g_i and n = B g / |B g|), and leaves splashed particles
 and those with div r < 0.6 d unshifted.
 
-In 3D, UTVF also leaves unshifted the free-surface particles that have a
-material neighbour with div r < 0.6 d within h (``edge_neighbours = "kept"``,
-the case parameter ``utvf_edge_neighbours``; ``"shifted"`` is Eq. 37 as
-printed). Why: a perfect lattice is regular, so a regularising shift must
-leave it in place. In 2D, Eq. 37 does. A flat face's particles have g along
+With the case parameter ``utvf_edge_neighbours = "kept"``, UTVF in 3D also
+leaves unshifted the free-surface particles that have a material neighbour
+with div r < 0.6 d within h. The default, ``"shifted"``, is Eq. 37 as
+printed. Why the option: a perfect lattice is regular, so a regularising
+shift should leave it in place. In 2D, Eq. 37 does. A flat face's particles have g along
 n, and the face particle beside a corner has div r = 1.19 < 0.6 d = 1.2
 (Wendland C2, h = 1.3 dp). In 3D it does not. The face particle beside an edge has
 div r = 1.93-1.98 > 1.8, and its support is cut off along the edge's other
@@ -40,6 +40,10 @@ it (tests/test_transport_velocity.py).
 The rule is not applied in 2D, where Eq. 37 already leaves the lattice in
 place. There it would also stop the shift beside thin jets: on the rotating
 patch at L/100 it raises the clustering at t = 1.9 s from 1.72 % to 4.52 %.
+It is not the default because it does not help every flow. On the cube of
+000_ Sec. 5.3 it removes the crowding at the edges, but on the flume it
+leaves the rough free surface of the thin flow unregularised, and more
+particles cluster there. docs/PRODUCTION_3D.md has both runs of both cases.
 
 The limited variant, once per advection step (001_ Eqs. 14-16):
 
@@ -73,7 +77,7 @@ LIMITER_THRESHOLD = 5e-4
 COEFFICIENT = 0.2
 ALPHA = 0.2  # 000_ Eq. 30
 NO_SHIFT_DIVERGENCE = 0.6  # times the dimension (000_ Sec. 3.3)
-EDGE_NEIGHBOURS = ("kept", "shifted")  # the choices of utvf_edge_neighbours, the default first
+EDGE_NEIGHBOURS = ("shifted", "kept")  # the choices of utvf_edge_neighbours, the default first
 
 
 @njit(cache=True)
@@ -175,8 +179,8 @@ class TransportVelocity(Stabiliser):
 
 
 class UnifiedTransportVelocity(TransportVelocity):
-    """000_ Eqs. 30-37 on inner and free-surface particles; in 3D not on the free-surface particles
-    beside an edge unless the case's ``utvf_edge_neighbours`` is "shifted" (module docstring)."""
+    """000_ Eqs. 30-37 on inner and free-surface particles; with the case's ``utvf_edge_neighbours``
+    "kept", not on the 3D free-surface particles beside an edge (module docstring)."""
 
     name = "utvf"
     unified = True
