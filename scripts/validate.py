@@ -706,18 +706,18 @@ def inclined_plane(ranks):
             "Eq. 39, to 6.5 s, where 004_ reports its steady state; K_t for Mach 0.1 at the analytical surface "
             "speed as 004_ Sec. 5.1 says (1.3e-7 1/Pa; Table 2 prints 1.5e-5, which puts that flow at Mach 1.1). Layers are dp-thick bins of the last "
             "frame; the surface velocity is the mean of the top layer; the analytical profile takes "
-            "incompressible grains and no regularisation. An open gap (issue 14): no variant is steady at "
-            "6.5 s; every layer is still accelerating (the trend rows), with its shear in the lower half "
-            "under a nearly plug-like upper half. Under the unregularised law (friction at least mu_s "
-            "everywhere) the layer's mean speed grows by at most g (sin theta - mu_s cos theta) = 0.75 "
-            "m/s^2, so from rest it needs at least 10 s to reach the analytical mean of 7.7 m/s: 004_'s "
-            "steady state at 6.5 s is faster than that bound. With the harmonic mean of Eq. 37 and alpha "
-            "= 0 the layer dilates after 5 s (its top rises by a tenth) and speeds up. Measured at H = "
-            "0.02 m in earlier sessions: Eq. 27's pair viscosity at h = 1.3 dp delivers 81 % (2D) of "
-            "div(eta grad v) on a square lattice, 87 % on sliding square rows, 92 % on sliding hexagonal "
-            "rows (tests/test_mu_i_law.py), and the mu(I) law turns a deficit df of the viscous stress "
-            "into a velocity error of about 8 df near I_u; the corrected stress is exact on a lattice, "
-            "but its continuity density drifts below the particles' volume and the flow runs away later.")
+            "incompressible grains and no regularisation. An open gap (issue 14): no variant reaches the "
+            "analytical flow. Without artificial viscosity the layers still accelerate at 6.5 s (the trend rows); "
+            "with Eq. 37's harmonic mean a grain leaves the layer at 6.03 s (the grains at the free surface have "
+            "no friction, mu_i_law.pair_viscosity), and the rows for it are read at the frame before. With "
+            "004_'s alpha = 0.05 the layers are nearly steady, at a fifth of the analytical surface speed or less. "
+            "From rest no layer can be steady by 6.5 s: under the unregularised law (friction at least mu_s "
+            "everywhere) the mean speed grows by at most g (sin theta - mu_s cos theta) = 0.75 m/s^2, so it "
+            "needs at least 10 s to reach the analytical mean of 7.7 m/s. Near the uniform flow the layer "
+            "relaxes with a time of 15 s at H = 0.1 m (references.inclined_plane_relaxation_time). docs/INCLINE.md "
+            "has the CI-sized layer (H = 0.02 m) that does reach a steady state, and where it falls short: "
+            "Eq. 27's pair viscosity delivers 81-92 % of div(eta grad v) on lattices (tests/test_mu_i_law.py), "
+            "which the law magnifies about eightfold near I_u.")
     return "Inclined plane (004_ Sec. 5.1)", cmd, rows, image, note
 
 
