@@ -14,6 +14,7 @@ import argparse
 
 import numpy as np
 
+from mpisph import surface
 from mpisph.instability import CLUSTER_DISTANCE
 from mpisph.io.frames import read_frame
 from mpisph.neighbours import neighbour_lists
@@ -23,45 +24,48 @@ from mpisph.stabilisers.transport_velocity import NO_SHIFT_DIVERGENCE
 CLASSES = ("inner", "near-surface", "outermost", "splashed")
 
 
+def _moving_first(frame):
+    """(dp from the moving particles' volumes, the order that puts moving particles first, their count):
+    the neighbour lists are built for the first rows."""
+    moving = frame["kind"] == MOVING
+    dim = frame["x"].shape[1]
+    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
+    return dp, np.argsort(~moving, kind="stable"), int(moving.sum())
+
+
 def clustered_pairs(frame):
     """(dp, indices of the clustered moving particles, index of each one's nearest partner)."""
-    x, kind = frame["x"], frame["kind"]
-    moving = kind == MOVING
-    dim = x.shape[1]
-    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
-    order = np.argsort(~moving, kind="stable")  # moving particles first: they get lists
-    xs = x[order]
-    n_moving = int(moving.sum())
-    start, nbr = neighbour_lists(xs, frame["gid"][order], kind[order], n_moving, CLUSTER_DISTANCE * dp,
+    dp, order, n_moving = _moving_first(frame)
+    xs = frame["x"][order]
+    start, nbr = neighbour_lists(xs, frame["gid"][order], frame["kind"][order], n_moving, CLUSTER_DISTANCE * dp,
                                  xs.min(axis=0))
-    count = np.diff(start)
-    mine = np.flatnonzero(count > 0)
+    mine = np.flatnonzero(np.diff(start) > 0)
     partner = np.empty(len(mine), np.int64)
-    for k, i in enumerate(mine):
+    for k, i in enumerate(mine):  # the clustered particles only
         js = nbr[start[i]:start[i + 1]]
         partner[k] = js[np.argmin(np.linalg.norm(xs[js] - xs[i], axis=1))]
     return dp, order[mine], order[partner]
 
 
+def shifted_on_the_surface(frame):
+    """Mask of the free-surface particles (near-surface or outermost) that Eq. 37 shifts: div r >= 0.6 d."""
+    return (np.isin(frame["surface"], (surface.NEAR_SURFACE, surface.SURFACE))
+            & (frame["div_r"] >= NO_SHIFT_DIVERGENCE * frame["x"].shape[1]))
+
+
 def beside_an_edge(frame):
-    """Mask of the free-surface particles (near-surface or outermost, div r >= 0.6 d) that have a
-    material neighbour with div r < 0.6 d within h: those 3D UTVF with utvf_edge_neighbours=kept
-    leaves unshifted (stabilisers/transport_velocity.py)."""
-    x, kind = frame["x"], frame["kind"]
-    moving = kind == MOVING
-    dim = x.shape[1]
-    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
-    order = np.argsort(~moving, kind="stable")
-    n_moving = int(moving.sum())
+    """Mask of the particles of ``shifted_on_the_surface`` that have a material neighbour with
+    div r < 0.6 d within h: those 3D UTVF with utvf_edge_neighbours=kept leaves unshifted
+    (stabilisers/transport_velocity.py)."""
+    dp, order, n_moving = _moving_first(frame)
+    kind = frame["kind"][order]
     h = float(frame["params"].get("h_factor", 1.3)) * dp
-    start, nbr = neighbour_lists(x[order], frame["gid"][order], kind[order], n_moving, h, x.min(axis=0))
-    div, cls = frame["div_r"][order], frame["surface"][order]
-    low = (div < NO_SHIFT_DIVERGENCE * dim) & (kind[order] == MOVING)
-    mask = np.zeros(len(x), bool)
-    for i in range(n_moving):
-        if cls[i] in (1, 2) and not low[i] and low[nbr[start[i]:start[i + 1]]].any():
-            mask[order[i]] = True
-    return mask
+    start, nbr = neighbour_lists(frame["x"][order], frame["gid"][order], kind, n_moving, h, frame["x"].min(axis=0))
+    low = (frame["div_r"][order] < NO_SHIFT_DIVERGENCE * frame["x"].shape[1]) & (kind == MOVING)
+    below = np.concatenate([[0], np.cumsum(low[nbr])])  # low neighbours up to each list entry
+    mask = np.zeros(len(kind), bool)
+    mask[order[:n_moving]] = below[start[1:n_moving + 1]] > below[start[:n_moving]]
+    return mask & shifted_on_the_surface(frame)
 
 
 def describe(path):

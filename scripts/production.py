@@ -29,7 +29,7 @@ from mpisph.launch import mpirun_mpisph  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
 
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
-from clustered import CLASSES, beside_an_edge, clustered_pairs  # noqa: E402  (this directory)
+from clustered import CLASSES, beside_an_edge, clustered_pairs, shifted_on_the_surface  # noqa: E402  (this directory)
 from validate import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -74,11 +74,8 @@ def instability_rows(out, times):
     return rows
 
 
-def instability_table(rows, variants=None):
-    """The rows of ``instability_rows``; with ``variants`` ({label: rows}) a row per variant and time."""
-    if variants is None:
-        lines = ["| t [s] | clustering | inner voids | smallest spacing / dp |", "|---|---|---|---|"]
-        return lines + [f"| {t:.2f} | {100 * c:.3f} % | {100 * v:.3f} % | {s:.2f} |" for t, c, v, s in rows]
+def instability_table(variants):
+    """A row per variant ({label: rows of ``instability_rows``}) and time."""
     lines = ["| run | t [s] | clustering | inner voids | smallest spacing / dp |", "|---|---|---|---|---|"]
     return lines + [f"| {label} | {t:.2f} | {100 * c:.3f} % | {100 * v:.3f} % | {s:.2f} |"
                     for label, rows in variants.items() for t, c, v, s in rows]
@@ -95,8 +92,7 @@ def clustered_summary(frame):
 
 def edge_share(frame):
     """The free-surface particles that Eq. 37 shifts and the kept option does not, over all it shifts."""
-    shifted = np.isin(frame["surface"], (1, 2)) & (frame["div_r"] >= 0.6 * frame["x"].shape[1])
-    return f"{int(np.sum(beside_an_edge(frame)))} of {int(np.sum(shifted))}"
+    return f"{int(np.sum(beside_an_edge(frame)))} of {int(np.sum(shifted_on_the_surface(frame)))}"
 
 
 def cube_failure_3d(ranks, reuse):
@@ -129,7 +125,7 @@ def cube_failure_3d(ranks, reuse):
         f"`{cmd}`: {n} particles, dp = 0.04 m, UTVF, to t = 1 s: **wall time {wall:.0f} s, "
         f"{rate:.3g} particle-steps/s/core**." + (f" **The run stopped: {blow_up}.**" if blow_up else ""),
         "",
-        *instability_table(rows, {"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
+        *instability_table({"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
         "",
         "As printed, Eq. 37 moves a perfect 3D lattice's face particles towards its edges, where they crowd "
         f"against the unshifted edge particles. `{kept_cmd}`"
@@ -198,6 +194,7 @@ def flume_3d(ranks, reuse):
                                                  name="flume_3d_edge_neighbours_kept")
     kept = instability_rows(kept_out, (1.0, 2.0, 4.0))
     _, kept_speed = max_speeds(kept_out)
+    kept_at_1, = render.frames_at(kept_out, (1.0,))
     snap = render.snapshots_png(out, (0.0, 1.0, 2.0, 4.0), IMG / "flume_3d_speed.png", view=(30.0, -65.0),
                                 title="flume_3d: speed")
     fig, ax = plt.subplots(1, 3, figsize=(15, 4))
@@ -249,13 +246,13 @@ def flume_3d(ranks, reuse):
         "its points inside the soil) and the flow depth there (gauge approach_top), rho = rho0, w = 1 m; "
         "it is drawn while that speed is at least a tenth of its peak (the impact, not the deposit at rest).",
         "",
-        *instability_table(rows, {"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
+        *instability_table({"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
         "",
         f"With the edge neighbours kept (`{kept_cmd}`" + (f", which stopped: {kept_blow_up}" if kept_blow_up else "")
         + f"): largest speed at the end {kept_speed[-1] / kept_speed.max():.2g} of its peak; the clustered particles "
-        "(scripts/clustered.py) " + clustered_summary(render.frames_at(kept_out, (1.0,))[0]) + ", against "
+        "(scripts/clustered.py) " + clustered_summary(kept_at_1) + ", against "
         + clustered_summary(render.frames_at(out, (1.0,))[0]) + " as printed. Beside an edge: the free-surface "
-        "particles that Eq. 37 shifts and the option leaves in place, " + edge_share(render.frames_at(kept_out, (1.0,))[0])
+        "particles that Eq. 37 shifts and the option leaves in place, " + edge_share(kept_at_1)
         + " on the flowing layer at 1 s (on the cube at 1 s: "
         + edge_share(render.frames_at(RUNS / "cube_failure_3d_edge_neighbours_kept", (1.0,))[0]) + "): the option "
         "leaves much of the rough free surface of the thin flow unregularised.",
