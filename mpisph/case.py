@@ -22,7 +22,7 @@ from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: 
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
 from .stabilisers.shifting import COEFFICIENT
-from .stabilisers.transport_velocity import EDGE_NEIGHBOURS
+from .stabilisers.transport_velocity import EDGE_NEIGHBOURS, NEAR_SURFACE_NORMALS
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
@@ -160,6 +160,11 @@ SOLID_PARAMS = {
                                   "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
                                   "or kept in place, so that a perfect lattice stays regular "
                                   "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS),
+    "utvf_near_surface_normal": Param(NEAR_SURFACE_NORMALS[0], "-", "with stabiliser=utvf, the normal on which "
+                                      "a near-surface particle's shift is projected (000_ Eq. 36): its own B g "
+                                      "(Eq. 35 as printed) or the kernel-weighted mean of the Eq. 35 normals of the "
+                                      "outermost particles within h (stabilisers/transport_velocity.py)",
+                                      choices=NEAR_SURFACE_NORMALS),
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

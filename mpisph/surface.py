@@ -76,6 +76,13 @@ def tangential(i, B, dim, g0, g1, g2, v0, v1, v2):
     normal exists. The normal is B_i g (000_ Eqs. 32-35; B packed as tensors.py): g = sum_j V_j
     grad W_ij is the colour gradient of one material, walls counting as filled space."""
     n0, n1, n2 = times_vector(B, i, dim, g0, g1, g2)
+    return without_normal_part(n0, n1, n2, v0, v1, v2)
+
+
+@njit(cache=True)
+def without_normal_part(n0, n1, n2, v0, v1, v2):
+    """(v0, v1, v2) - ((v.n) / |n|^2) n (000_ Eq. 36 for a normal n of any length), and whether n is
+    not zero (if it is, v is returned as it is)."""
     norm2 = n0 * n0 + n1 * n1 + n2 * n2
     if norm2 == 0.0:
         return v0, v1, v2, False

@@ -3,11 +3,12 @@
     .venv/bin/python scripts/production.py [--ranks 2] [--only cube_failure_3d|flume_3d ...] [--reuse]
 
 Each run's command, wall time and throughput are printed in the page beside its pictures; each
-case runs a second time with ``--set utvf_edge_neighbours=kept`` (3D UTVF with the free-surface
-particles beside an edge left in place), whose clustering is reported beside the default's. The
-script exits non-zero, listing them, when a figure misses what issue 15 asks: clustering above
-0.1 % (tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end
-at least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. ``--reuse``
+case runs twice more with the options of 3D UTVF (``VARIANTS``): the free-surface particles beside
+an edge left in place, then also the near-surface particles projected on the outermost particles'
+normals; their clustering is reported beside the default's. The script exits non-zero, listing
+them, when a figure of the default run misses what issue 15 asks: clustering above 0.1 %
+(tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end at
+least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. ``--reuse``
 measures the runs already in runs/production/ instead of running them again.
 """
 
@@ -62,7 +63,33 @@ def run(case, args, ranks, reuse, name=None):
     return out, shown, float(last[0]), float(last[1]) / ranks, blow_up.group(1)
 
 
-EDGE_NEIGHBOURS_KEPT = ["--set", "utvf_edge_neighbours=kept"]  # the 3D UTVF option that keeps a lattice regular
+# the options of 3D UTVF (stabilisers/transport_velocity.py): {run name suffix: (label, arguments)}
+VARIANTS = {
+    "edge_neighbours_kept": ("UTVF, edge neighbours kept", ["--set", "utvf_edge_neighbours=kept"]),
+    "outermost_normals": ("UTVF, edge neighbours kept, near-surface normals from the outermost particles",
+                          ["--set", "utvf_edge_neighbours=kept", "utvf_near_surface_normal=outermost"]),
+}
+DEFAULT_LABEL = "UTVF as printed (Eq. 37, the default)"
+
+
+def variant_runs(case, ranks, reuse, times):
+    """Each variant's run of ``case``: {suffix: (output directory, command, blow-up message or None,
+    ``instability_rows`` at ``times``)}."""
+    runs = {}
+    for suffix, (_, args) in VARIANTS.items():
+        out, cmd, _, _, blow_up = run(case, args, ranks, reuse, name=f"{case}_{suffix}")
+        runs[suffix] = out, cmd, blow_up, instability_rows(out, times)
+    return runs
+
+
+def variants_table(rows, runs):
+    """``instability_table`` of the default's ``rows`` and the variants' ``runs``."""
+    return instability_table({DEFAULT_LABEL: rows, **{VARIANTS[s][0]: r[3] for s, r in runs.items()}})
+
+
+def stopped(blow_up):
+    """' (which stopped: ...)' for a run that blew up, else ''."""
+    return f" (which stopped: {blow_up})" if blow_up else ""
 
 
 def instability_rows(out, times):
@@ -98,9 +125,9 @@ def edge_share(frame):
 def cube_failure_3d(ranks, reuse):
     out, cmd, wall, rate, blow_up = run("cube_failure_3d", [], ranks, reuse)
     rows = instability_rows(out, (0.5, 1.0))
-    kept_out, kept_cmd, _, _, kept_blow_up = run("cube_failure_3d", EDGE_NEIGHBOURS_KEPT, ranks, reuse,
-                                                 name="cube_failure_3d_edge_neighbours_kept")
-    kept = instability_rows(kept_out, (0.5, 1.0))
+    variants = variant_runs("cube_failure_3d", ranks, reuse, (0.5, 1.0))
+    kept_out, kept_cmd, kept_blow_up, _ = variants["edge_neighbours_kept"]
+    normals_out, normals_cmd, normals_blow_up, _ = variants["outermost_normals"]
     snap = render.snapshots_png(out, (0.0, 0.5, 1.0), IMG / "cube_failure_3d_speed.png", view=(25.0, -50.0),
                                 title="cube_failure_3d: speed")
     diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
@@ -125,15 +152,18 @@ def cube_failure_3d(ranks, reuse):
         f"`{cmd}`: {n} particles, dp = 0.04 m, UTVF, to t = 1 s: **wall time {wall:.0f} s, "
         f"{rate:.3g} particle-steps/s/core**." + (f" **The run stopped: {blow_up}.**" if blow_up else ""),
         "",
-        *instability_table({"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
+        *variants_table(rows, variants),
         "",
         "As printed, Eq. 37 moves a perfect 3D lattice's face particles towards its edges, where they crowd "
-        f"against the unshifted edge particles. `{kept_cmd}`"
-        + (f" (which stopped: {kept_blow_up})" if kept_blow_up else "") + " leaves the free-surface particles "
-        "within h of an edge or corner (div r < 0.6 d) unshifted (mpisph/stabilisers/transport_velocity.py). "
-        "The clustered particles (scripts/clustered.py): "
+        f"against the unshifted edge particles. `{kept_cmd}`{stopped(kept_blow_up)} leaves the free-surface "
+        f"particles within h of an edge or corner (div r < 0.6 d) unshifted. `{normals_cmd}`"
+        f"{stopped(normals_blow_up)} also projects a near-surface particle's shift on the mean normal of the "
+        "outermost particles within h, which on a disordered surface is the surface's normal where its own is not "
+        "(mpisph/stabilisers/transport_velocity.py). The clustered particles (scripts/clustered.py): "
         + "; ".join(clustered_summary(f) for f in render.frames_at(out, (0.5, 1.0))) + " (as printed); "
-        + "; ".join(clustered_summary(f) for f in render.frames_at(kept_out, (0.5, 1.0))) + " (edge neighbours kept).",
+        + "; ".join(clustered_summary(f) for f in render.frames_at(kept_out, (0.5, 1.0))) + " (edge neighbours kept); "
+        + "; ".join(clustered_summary(f) for f in render.frames_at(normals_out, (0.5, 1.0)))
+        + " (and the outermost normals).",
         "",
         f"![speed]({Path(snap).relative_to(DOCS)})",
         "",
@@ -190,10 +220,11 @@ def flume_3d(ranks, reuse):
     before = int(np.argmax(flux[:peak + 1]))
     alpha_peak = force[peak] / flux[before] if flux[before] > 0 else float("nan")
     rows = instability_rows(out, (1.0, 2.0, 4.0))
-    kept_out, kept_cmd, _, _, kept_blow_up = run("flume_3d", EDGE_NEIGHBOURS_KEPT, ranks, reuse,
-                                                 name="flume_3d_edge_neighbours_kept")
-    kept = instability_rows(kept_out, (1.0, 2.0, 4.0))
+    variants = variant_runs("flume_3d", ranks, reuse, (1.0, 2.0, 4.0))
+    kept_out, kept_cmd, kept_blow_up, _ = variants["edge_neighbours_kept"]
+    normals_out, normals_cmd, normals_blow_up, _ = variants["outermost_normals"]
     _, kept_speed = max_speeds(kept_out)
+    _, normals_speed = max_speeds(normals_out)
     kept_at_1, = render.frames_at(kept_out, (1.0,))
     snap = render.snapshots_png(out, (0.0, 1.0, 2.0, 4.0), IMG / "flume_3d_speed.png", view=(30.0, -65.0),
                                 title="flume_3d: speed")
@@ -246,16 +277,19 @@ def flume_3d(ranks, reuse):
         "its points inside the soil) and the flow depth there (gauge approach_top), rho = rho0, w = 1 m; "
         "it is drawn while that speed is at least a tenth of its peak (the impact, not the deposit at rest).",
         "",
-        *instability_table({"UTVF as printed (Eq. 37, the default)": rows, "UTVF, edge neighbours kept": kept}),
+        *variants_table(rows, variants),
         "",
-        f"With the edge neighbours kept (`{kept_cmd}`" + (f", which stopped: {kept_blow_up}" if kept_blow_up else "")
-        + f"): largest speed at the end {kept_speed[-1] / kept_speed.max():.2g} of its peak; the clustered particles "
+        f"With the edge neighbours kept (`{kept_cmd}`{stopped(kept_blow_up)}): largest speed at the end "
+        f"{kept_speed[-1] / kept_speed.max():.2g} of its peak; the clustered particles "
         "(scripts/clustered.py) " + clustered_summary(kept_at_1) + ", against "
         + clustered_summary(render.frames_at(out, (1.0,))[0]) + " as printed. Beside an edge: the free-surface "
         "particles that Eq. 37 shifts and the option leaves in place, " + edge_share(kept_at_1)
         + " on the flowing layer at 1 s (on the cube at 1 s: "
         + edge_share(render.frames_at(RUNS / "cube_failure_3d_edge_neighbours_kept", (1.0,))[0]) + "): the option "
-        "leaves much of the rough free surface of the thin flow unregularised.",
+        "leaves much of the rough free surface of the thin flow unregularised. With the outermost normals as well "
+        f"(`{normals_cmd}`{stopped(normals_blow_up)}): largest speed at the end "
+        f"{normals_speed[-1] / normals_speed.max():.2g} of its peak; "
+        + clustered_summary(render.frames_at(normals_out, (1.0,))[0]) + ".",
         "",
         f"![speed]({Path(snap).relative_to(DOCS)})",
         "",

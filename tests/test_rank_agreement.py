@@ -44,6 +44,10 @@ CASES = {
     # 3D UTVF with the free-surface particles beside an edge kept in place: the neighbours' div r from ghosts
     "cube_failure_3d edges_kept": (["--set", "dp=0.2", "utvf_edge_neighbours=kept", "--t-end", "0.8",
                                     "--output-interval", "0.4"], 5.6),
+    # and the near-surface particles projected on the outermost particles' normals, read from ghosts
+    "cube_failure_3d outermost_normals": (["--set", "dp=0.2", "utvf_edge_neighbours=kept",
+                                           "utvf_near_surface_normal=outermost", "--t-end", "0.8",
+                                           "--output-interval", "0.4"], 5.6),
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
@@ -100,14 +104,16 @@ def test_bitwise_identical(runs, case):
             np.testing.assert_array_equal(one[name], other[name], err_msg=f"{case} {name} {ranks} ranks")
 
 
-# the mu(I) incline: its first time step after a restart takes the viscosity stored in the frame
-@pytest.mark.parametrize("case", ["dam_break_2d", "taylor_green", "column_collapse_2d", "inclined_plane"])
+# the mu(I) incline: its first time step after a restart takes the viscosity stored in the frame;
+# the outermost normals: recomputed, not read from the frame (a restart takes the frame's parameters)
+@pytest.mark.parametrize("case", ["dam_break_2d", "taylor_green", "column_collapse_2d", "inclined_plane",
+                                  "cube_failure_3d outermost_normals"])
 @pytest.mark.parametrize("ranks", [1, 3])
 def test_restart_continues_the_run(runs, case, ranks, tmp_path):
     uninterrupted = runs[case][2]
     halfway = list_frames(uninterrupted)[1]
     args, size = CASES[case]
-    r = mpisph([case, "--restart", halfway, "--out", tmp_path, "--quiet"], ranks=ranks, timeout=600)
+    r = mpisph([case.split()[0], "--restart", halfway, "--out", tmp_path, "--quiet"], ranks=ranks, timeout=600)
     assert r.returncode == 0, r.stderr
     assert_same_particles(final_state(uninterrupted), final_state(tmp_path), size)
 
