@@ -9,7 +9,8 @@ normals; their clustering is reported beside the default's. The script exits non
 them, when a figure of the default run misses what issue 15 asks: clustering above 0.1 %
 (tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end at
 least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. ``--reuse``
-measures the runs already in runs/production/ instead of running them again.
+measures the runs already in runs/production/ instead of running them again, and runs only those
+not there yet.
 """
 
 import argparse
@@ -48,7 +49,7 @@ def run(case, args, ranks, reuse, name=None):
     out = RUNS / (name or case)
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}".strip()
     log = out / "run.log"
-    if not reuse:
+    if not (reuse and log.exists()):
         r = mpirun_mpisph([case, *args, "--out", out], ranks=ranks)
         log.write_text(r.stdout + r.stderr)
         if r.returncode not in (0, 3):
@@ -305,7 +306,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--only", nargs="*", choices=list(RUNNERS))
-    ap.add_argument("--reuse", action="store_true", help="measure the runs already in runs/production/")
+    ap.add_argument("--reuse", action="store_true", help="measure the runs already in runs/production/, run the others")
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     RUNS.mkdir(parents=True, exist_ok=True)
