@@ -36,7 +36,7 @@ from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
 from mpisph.lattice import Frame
 from mpisph.meshes import fill, read_surface, wall_layers
-from mpisph.soil import soil_params
+from mpisph.soil import soil_params, stress_diffusion_param
 
 GEOMETRY = Path(__file__).resolve().parent / "flume"
 WALLS = ("chute", "chute_sides", "runout", "runout_sides", "barrier")  # STL files; floors before sides
@@ -49,6 +49,7 @@ PARAMS = {
     # evolved by Eq. 16 alone it drifts without bound in the resting deposit (docs/FLUME.md)
     **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0, density_reinit="free_surface"),
     "limiter": limiter_param("separating"),
+    "stress_diffusion": stress_diffusion_param(),
     "t_end": Param(4.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }
@@ -91,7 +92,7 @@ def setup(p):
         dp=p.dp,
         material=DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi),
         scheme="riemann_granular",
-        scheme_options={"limiter": p.limiter},
+        scheme_options={"limiter": p.limiter, "stress_diffusion": p.stress_diffusion},
         bodies=[Body("soil", fill(soil, p.dp, slope))],
         walls=walls,
         gravity=(0.0, 0.0, -p.g),

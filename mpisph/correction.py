@@ -23,7 +23,7 @@ DEGENERATE_DET = 0.2  # a_min = DEGENERATE_DET ** d
 
 
 @njit(cache=True)
-def _regularised_inverse(A, out):
+def regularised_inverse(A, out):
     """out = (adj A + w I) / (det A + w) for a symmetric 2 x 2 or 3 x 3 A."""
     dim = A.shape[0]
     det = adjugate(A, out)
@@ -61,7 +61,7 @@ def correction_matrix(n, start, nbr, xc, mass, rho, kind, k, B):
         A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a01, a11
         if dim == 3:
             A[0, 2], A[2, 0], A[1, 2], A[2, 1], A[2, 2] = a02, a02, a12, a12, a22
-        _regularised_inverse(A, inverse)
+        regularised_inverse(A, inverse)
         for a in range(dim):
             for b in range(a, dim):
                 B[i, component(dim, a, b)] = inverse[a, b]

@@ -13,7 +13,7 @@ import numpy as np
 from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params,
                    density_reinit_param, limiter_param, scheme_keywords)
 from .geometry import block, depth_outside, support_layers, walls_around
-from .physics.drucker_prager import geostatic_stress
+from .physics.drucker_prager import STRESS_DIFFUSIONS, geostatic_stress
 
 
 def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
@@ -33,6 +33,13 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
     }
 
 
+def stress_diffusion_param():
+    """The parameter choosing riemann_granular's stress diffusion (physics/drucker_prager.py)."""
+    return Param(STRESS_DIFFUSIONS[0], "-", "riemann_granular's stress diffusion: geostatic (Feng et al. 2021, "
+                 "as 000_: sigma less its geostatic part) or linear (less each component's local linear part, "
+                 "as delta-SPH's density diffusion; physics/drucker_prager.py)", choices=STRESS_DIFFUSIONS)
+
+
 def scheme_params(alpha=1.0, beta=0.0):
     """Typed parameters choosing the soil's scheme: the Riemann SPH of 000_ (with the pairs its
     limiter damps) or the classic SPH of 002_ (with the artificial viscosity ``alpha``, ``beta`` of
@@ -45,13 +52,14 @@ def scheme_params(alpha=1.0, beta=0.0):
         "chi_max": Param(1.5, "-", "chi_max of Morris's walls (002_ Eq. 34, 1.5-2; classic_granular)",
                          positive=True),
         "limiter": limiter_param("separating"),
+        "stress_diffusion": stress_diffusion_param(),
     }
 
 
 def scheme_choice(p):
     """The keyword arguments of a soil ``Case`` for the scheme the parameters ``p`` choose: the
-    classic scheme with Morris's chi_max, or the Riemann scheme with its limiter."""
-    return scheme_keywords(p, {"chi_max": p.chi_max}, {"limiter": p.limiter})
+    classic scheme with Morris's chi_max, or the Riemann scheme with its limiter and stress diffusion."""
+    return scheme_keywords(p, {"chi_max": p.chi_max}, {"limiter": p.limiter, "stress_diffusion": p.stress_diffusion})
 
 
 def block_on_floor(p, L, H, floor, name):

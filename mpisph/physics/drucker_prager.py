@@ -21,8 +21,26 @@ sigma_v = -rho0 g (H - y), sigma_h = (1 - sin phi) sigma_v:
 
     dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - sigma^geo_ij) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
 
-zeta = 0.1, over material neighbours. The deviators here are 3D (the
-stress tensor is 3 x 3 in 2D too, plane strain); p = -tr(sigma)/3.
+zeta = 0.1, over material neighbours. The scheme's option
+``stress_diffusion = "linear"`` subtracts instead each component's local
+linear part, as delta-SPH's density diffusion does (Antuono et al. 2010):
+
+    dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - (G_i + G_j) . r_ij / 2) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
+
+G = grad sigma with the correction matrix over the material neighbours, so
+that G is exact and the term zero on any linear stress field, the geostatic
+one included; the pair term is antisymmetric, so sum_i V_i dsigma_i/dt = 0
+as with Feng's. Why: a resting deposit keeps any velocity v whose elastic
+stress rate C : L(v) the diffusion cancels while the UTVF shift holds the
+grains in place (docs/FLUME.md). Feng's term vanishes only on the geostatic
+field of a level surface; a deposit on a slope, against a barrier or between
+walls is not geostatic. On a 10^3 block jittered by 0.2 dp (masses and
+densities varied by 10 and 5 %) with horizontal gradients of 20 kPa/m in
+sigma_xx and 10 kPa/m in sigma_xy over the geostatic field, Feng's term
+gives up to 1.5e5 Pa/s and the linear one 1.7e-9 Pa/s
+(tests/test_stress_diffusion.py). The default is Feng's, as
+000_ uses; docs/FLUME.md has the flume with both. The deviators here are 3D
+(the stress tensor is 3 x 3 in 2D too, plane strain); p = -tr(sigma)/3.
 """
 
 import math
@@ -30,9 +48,10 @@ import math
 import numpy as np
 from numba import njit
 
+from ..correction import regularised_inverse
 from ..kernels import pair_dw
 from ..materials import DruckerPrager
-from ..neighbours import pair_distance
+from ..neighbours import pair_distance, pair_offset
 from ..particles import Field, is_wall
 from ..tensors import SYM3, unpack_row
 from .fluid import limited_pairs_sign
@@ -40,6 +59,9 @@ from .solid import SolidScheme, jaumann_rate, material_pressure, velocity_gradie
 
 DIFFUSION_ZETA = 0.1
 PLASTIC_STRAIN = Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]")
+STRESS_GRADIENT = Field("stress_gradient", (6, "dim"), np.float64,
+                        "gradient of each packed stress component (stress_diffusion=linear) [Pa/m]")
+STRESS_DIFFUSIONS = ("geostatic", "linear")  # the choices of the option stress_diffusion, the default first
 
 
 @njit(cache=True)
@@ -78,6 +100,65 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
             rate[i, c] = f_sum * stress[i, c] - sums[c]
         for a in range(3):
             rate[i, a] -= geo_sum if a == vert else k0 * geo_sum
+
+
+@njit(cache=True)
+def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
+    """out_i[c] = L_i sum_j V_j (sigma_j - sigma_i)[c] grad_i W_ij over the material neighbours, with
+    L_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1 over the same (regularised as B): exact on a linear
+    stress field; zero for walls."""
+    dim = xc.shape[1]
+    A = np.empty((dim, dim))
+    L = np.empty((dim, dim))
+    S = np.empty((6, dim))
+    for i in range(n):
+        out[i] = 0.0
+        if is_wall(kind[i]):
+            continue
+        A[:, :] = 0.0
+        S[:, :] = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            if is_wall(kind[j]):
+                continue
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
+            d = (d0, d1, d2)
+            for a in range(dim):
+                for b in range(dim):
+                    A[a, b] -= f * d[a] * d[b]
+                for c in range(6):
+                    S[c, a] += f * (stress[j, c] - stress[i, c]) * d[a]
+        regularised_inverse(A, L)
+        for c in range(6):
+            for a in range(dim):
+                for b in range(dim):
+                    out[i, c, a] += L[a, b] * S[c, b]
+
+
+@njit(cache=True)
+def linear_stress_diffusion(n, start, nbr, xc, stress, grad, mass, rho, kind, c0, k, rate):
+    """rate_i = the linear diffusion term of the module docstring over material neighbours, G = ``grad``
+    (``stress_gradient``), packed like the stress."""
+    dim = xc.shape[1]
+    h = k.h
+    coef0 = 2.0 * DIFFUSION_ZETA * h * c0
+    for i in range(n):
+        rate[i] = 0.0
+        if is_wall(kind[i]):
+            continue
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            if is_wall(kind[j]):
+                continue
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            d = (d0, d1, d2)
+            f = coef0 * mass[j] / rho[j] * r * pair_dw(k, r, i, j) / (r * r + 0.01 * h * h)
+            for c in range(6):
+                lin = 0.0
+                for a in range(dim):
+                    lin += (grad[i, c, a] + grad[j, c, a]) * d[a]
+                rate[i, c] += f * (stress[i, c] - stress[j, c] - 0.5 * lin)
 
 
 @njit(cache=True)
@@ -185,22 +266,25 @@ def geostatic_stress(x, top, soil, g):
 
 class RiemannGranular(SolidScheme):
     """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
-    as printed (solid.py says why). Option ``limiter``: the pairs the limiter damps,
-    ``separating`` or ``approaching``."""
+    as printed (solid.py says why). Options ``limiter``: the pairs the limiter damps,
+    ``separating`` or ``approaching``; ``stress_diffusion``: ``geostatic`` (Feng et al.) or
+    ``linear`` (module docstring)."""
 
     name = "riemann_granular"
     materials = (DruckerPrager,)
-    options = {"limiter": "separating"}
+    options = {"limiter": "separating", "stress_diffusion": STRESS_DIFFUSIONS[0]}
     riemann_continuity = 1.0  # Eq. 16
     corrected_shear_force = False  # Eq. 25 as printed
     carried_fields = ("v", "rho", "stress")
-    fields = SolidScheme.base_fields + (PLASTIC_STRAIN,)
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
         self.eta = 20.0 * case.dim  # 000_ Sec. 3.1.3
         self.damped = limited_pairs_sign(self)
         self.g = float(np.linalg.norm(case.gravity))
+        self.linear_diffusion = self.option_choice("stress_diffusion", STRESS_DIFFUSIONS) == "linear"
+        self.fields = (SolidScheme.base_fields + (PLASTIC_STRAIN,)
+                       + ((STRESS_GRADIENT,) if self.linear_diffusion else ()))
 
     def initial_density(self, pressure):
         return np.full_like(pressure, self.material.rho0)
@@ -213,7 +297,14 @@ class RiemannGranular(SolidScheme):
         pa, m = ctx.particles, self.material
         n = pa.n_owned
         diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
-        stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
-                         m.k0, m.c0, ctx.kernel.params, diffusion)
+        if self.linear_diffusion:
+            stress_gradient(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, ctx.kernel.params,
+                            pa.stress_gradient)
+            ctx.refresh(["stress_gradient"])
+            linear_stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.stress_gradient, pa.mass, pa.rho,
+                                    pa.kind, m.c0, ctx.kernel.params, diffusion)
+        else:
+            stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
+                             m.k0, m.c0, ctx.kernel.params, diffusion)
         drucker_prager_update(n, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)
