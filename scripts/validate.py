@@ -407,6 +407,12 @@ def column_collapse(ranks):
     return "Granular column collapse, L = 0.2 m and 0.1 m (dp = 0.002)", cmd, rows, image, note
 
 
+def final_over_peak_speed(frames):
+    """The largest particle speed of the last frame over its largest value over the frames."""
+    speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
+    return speeds[-1] / max(speeds)
+
+
 def cohesive_failure(ranks):
     tolerance = {"utvf": "<= 0.1% / 0 / -", "tvf": "surface clusters", "none": ">= 10 x utvf clustering"}
     dp = 0.04
@@ -425,12 +431,22 @@ def cohesive_failure(ranks):
         if st == "utvf":
             crack = measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0)
             rows.insert(0, ("crest crack behind the face [m]", f"{crack:.2f}", "1.2-1.5", "-", "[1.0, 1.7]"))
-            speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
-            rows.insert(1, ("final / peak max speed", f"{speeds[-1] / max(speeds):.3f}", "0", "-", "-"))
+            rows.insert(1, ("final / peak max speed", f"{final_over_peak_speed(frames):.3f}", "0", "-", "-"))
             shown = cmd
+    # the soil's stress diffusion less each component's linear part (physics/drucker_prager.py)
+    linear, _, _ = run("cohesive_failure_2d_utvf_linear_diffusion", "cohesive_failure_2d",
+                       ["--set", "stabiliser=utvf", "stress_diffusion=linear"], ranks)
+    crack = measure.crest_crack(linear[0], linear[-1], dp, 4.0, 0.05 * 2.0)
+    m = tensile_instability(read_frame(list_frames(RUNS / "cohesive_failure_2d_utvf_linear_diffusion")[-1],
+                                       walls=True))
+    rows.append(("utvf, stress_diffusion=linear: crest crack [m] / final / peak max speed / clustering at 2 s",
+                 f"{crack:.2f} / {final_over_peak_speed(linear):.3f} / {100 * m['clustering']:.2f}%",
+                 "1.2-1.5 / 0 / 0", "-", "-"))
     image = save(fig, "cohesive_failure_2d.png")
     note = ("Crest crack: the leftmost particle of the initial top layer that sank by more than 0.05 H. "
-            "The same command with `--set stabiliser=tvf` and `none` gives the other rows.")
+            "The same command with `--set stabiliser=tvf` and `none` gives the other rows, and with "
+            "`--set stabiliser=utvf stress_diffusion=linear` the last one (Feng's stress diffusion less "
+            "each component's linear part instead of the geostatic field, docs/FLUME.md).")
     return "Cohesive soil cut (dp = L/100)", shown, rows, image, note
 
 
