@@ -62,8 +62,9 @@ the own normal removes part of the shift along the surface and keeps part of
 the shift across it. On a perfect lattice both normals are the face's, so the
 lattice stays in place with either. From the 12^3 block jittered by 0.3 dp, 200
 shifts with utvf_edge_neighbours=kept leave 1.74 % of the particles nearer than
-dp/2 to another with the own normal and 0.81 % with the outermost one (1.33 /
-0.46 % and 0.46 / 0.12 % with two other seeds; tests/test_transport_velocity.py).
+dp/2 to another with the own normal and 0.81 % with the outermost one
+(tests/test_transport_velocity.py; with two other jitter seeds, through the
+same test harness but not asserted: 1.33 / 0.46 % and 0.46 / 0.12 %).
 Splashed and outermost particles keep Eq. 35. The outermost normals are a field
 (``surface_normal``) so that ghosts carry them; a restart recomputes them.
 
