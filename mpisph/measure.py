@@ -133,6 +133,15 @@ def deposit_height(frame, dp, x_max):
     return float(x[x[:, 0] < x_max, -1].max() + 0.5 * dp)
 
 
+def thrust_ratio(frame):
+    """A soil's first horizontal stress over its vertical one (the last axis), each integrated over
+    its volume: the thrust on a vertical wall over the one a lateral stress equal to the vertical
+    would give; nu / (1 - nu) for an elastic layer at rest in one-dimensional compression."""
+    volume = frame["mass"] / frame["rho"]
+    vertical = frame["x"].shape[1] - 1
+    return float(np.sum(frame["stress"][:, 0] * volume) / np.sum(frame["stress"][:, vertical] * volume))
+
+
 def crest_crack(first, last, dp, face, drop):
     """Distance behind the face ``face`` (x) of the crest crack: the leftmost particle of the
     initial top layer that has sunk by more than ``drop``."""

@@ -167,3 +167,27 @@ def planar_runout(a):
     switches at a = (1.9 / 1.2)^3 = 3.97. The validation fits the two regimes separately."""
     a = np.asarray(a, dtype=float)
     return np.minimum(1.2 * a, 1.9 * a ** (2.0 / 3.0))
+
+
+def lateral_earth_force(coefficients, gamma, top, bottom, width):
+    """Horizontal force on a vertical wall ``width`` wide spanning the depths ``top`` to ``bottom``
+    below a level soil surface of unit weight ``gamma``, under the pressure sigma_h = max(0, k gamma z
+    + cohesion_term) at depth z (no tension on the wall), ``coefficients`` = (k, cohesion_term) of
+    one state of ``earth_pressure``: Rankine's (1857) active or passive force with Bell's (1915)
+    cohesion terms, or Jaky's force at rest."""
+    k, cohesion_term = coefficients
+    z0 = max(top, -cohesion_term / (k * gamma)) if cohesion_term < 0.0 else top  # the tension crack's depth
+    if bottom <= z0:
+        return 0.0
+    return width * (0.5 * k * gamma * (bottom**2 - z0**2) + cohesion_term * (bottom - z0))
+
+
+def earth_pressure(phi_deg, cohesion):
+    """The coefficients (k, cohesion_term) of sigma_h = k sigma_v + cohesion_term behind a vertical
+    wall under a level surface, by state: Rankine's active, k = tan^2(45 - phi/2), with -2 c sqrt(k)
+    (Bell 1915); Jaky's (1944) at rest, k = 1 - sin phi, without cohesion term; Rankine's passive,
+    k = tan^2(45 + phi/2), with +2 c sqrt(k)."""
+    phi = np.radians(phi_deg)
+    ka, kp = np.tan(np.pi / 4 - phi / 2) ** 2, np.tan(np.pi / 4 + phi / 2) ** 2
+    return {"active": (ka, -2.0 * cohesion * np.sqrt(ka)), "at rest": (1.0 - np.sin(phi), 0.0),
+            "passive": (kp, 2.0 * cohesion * np.sqrt(kp))}

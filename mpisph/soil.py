@@ -36,8 +36,8 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
 def stress_diffusion_param():
     """The parameter choosing riemann_granular's stress diffusion (physics/drucker_prager.py)."""
     return Param(STRESS_DIFFUSIONS[0], "-", "riemann_granular's stress diffusion: geostatic (Feng et al. 2021, "
-                 "as 000_: sigma less its geostatic part) or linear (less each component's local linear part, "
-                 "as delta-SPH's density diffusion; physics/drucker_prager.py)", choices=STRESS_DIFFUSIONS)
+                 "as 000_: sigma less its geostatic part), linear (less each component's local linear part, "
+                 "as delta-SPH's density diffusion; physics/drucker_prager.py) or none", choices=STRESS_DIFFUSIONS)
 
 
 def scheme_params(alpha=1.0, beta=0.0):
@@ -75,9 +75,17 @@ def cube_on_floor(p, edge, floor, name):
                          (0.5 * floor, 0.5 * floor, rim), name)
 
 
-def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
-    """Soil filling the box [lo, hi] inside an open-topped tank [tank_lo, tank_hi] of no-slip
-    dummy walls; the domain reaches one block height above the block's top."""
+def confined_layer(p, L, H, name, k_lateral):
+    """The 2D Case of the soil layer ``name`` (L x H) filling a tank L wide of free-slip walls,
+    at rest under geostatic stress with the lateral coefficient ``k_lateral``: laterally confined,
+    the layer is in equilibrium with any lateral stress."""
+    return _soil_in_tank(p, (0.0, 0.0), (L, H), (0.0, 0.0), (L, 2.0 * H), name, slip=True, k_lateral=k_lateral)
+
+
+def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None):
+    """Soil filling the box [lo, hi] inside an open-topped tank [tank_lo, tank_hi] of dummy walls
+    (no-slip unless ``slip``) under geostatic stress (lateral coefficient ``k_lateral``, Jaky's
+    1 - sin phi if None); the domain reaches one block height above the block's top."""
     dim = len(lo)
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
     height, top = hi[-1] - lo[-1], hi[-1]
@@ -94,8 +102,8 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name):
         material=soil,
         **scheme_choice(p),
         bodies=[Body(name, block(lo, hi, p.dp, f"the {name}"),
-                     stress=lambda x: geostatic_stress(x, top, soil, p.g))],
-        walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)),
+                     stress=lambda x: geostatic_stress(x, top, soil, p.g, k_lateral))],
+        walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)), slip=slip,
                     distance=depth_outside(tank_lo, tank_hi))],
         gravity=gravity,
         stabilisers=p.stabiliser,

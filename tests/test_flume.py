@@ -6,6 +6,7 @@ import importlib.util
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.diagnostics import read_diagnostics
@@ -111,3 +112,30 @@ def test_the_barrier_coefficient_from_a_gauge_line():
     alpha = barrier_coefficient(np.array([5.0, 1800.0, 3600.0]), 2000.0, v, np.array([np.nan, 0.2, 0.4]), 0.5)
     assert np.isnan(alpha[0])
     np.testing.assert_allclose(alpha[1:], [1800.0 / (2000 * 9 * 0.2 * 0.5), 3600.0 / (2000 * 9 * 0.4 * 0.5)])
+
+
+def test_the_deposit_stress_script_on_a_banked_block():
+    """scripts/deposit_stress.py on a block resting against the barrier's face under a geostatic
+    stress with sigma_xx = 0.6 sigma_zz: the section carries 0.6 gamma H^2 / 2 per metre of width,
+    the medians are the coefficients, the top is the block's; the classical forces are the
+    references' for that top."""
+    spec = importlib.util.spec_from_file_location("deposit_stress", ROOT / "scripts" / "deposit_stress.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    face, height, ys = script.barrier_box(ROOT / "cases" / "flume")
+    assert (face, height, ys) == (0.6, 0.8, (0.0, 1.0))
+    dp, top, gamma = 0.02, 0.9, 1850.0 * 9.8
+    axes = [np.arange(lo + dp / 2, hi, dp) for lo, hi in ((0.0, face), ys, (0.0, top))]
+    x = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    stress = np.zeros((len(x), 6))
+    stress[:, 2] = -gamma * (top - x[:, 2])
+    stress[:, 0], stress[:, 1] = 0.6 * stress[:, 2], 0.3 * stress[:, 2]
+    params = {"dp": dp, "rho0": 1850.0, "g": 9.8, "nu": 0.3, "phi": 25.0, "cohesion": 5e3}
+    frame = {"x": x, "stress": stress, "mass": np.full(len(x), 1850.0 * dp**3), "rho": np.full(len(x), 1850.0),
+             "params": params}
+    force, deposit_top, kx, ky = script.frame_row(frame, face, ys, 0.1)
+    assert force == pytest.approx(0.6 * gamma * top**2 / 2, rel=1e-9)
+    assert deposit_top == pytest.approx(top) and kx == pytest.approx(0.6) and ky == pytest.approx(0.3)
+    forces = script.classical_forces(params, top, height, 1.0)
+    assert forces["elastic at rest"] == pytest.approx(0.3 / 0.7 * gamma * (top**2 - 0.1**2) / 2)
+    assert forces["active"] < forces["elastic at rest"] < forces["at rest"] < forces["passive"]

@@ -33,3 +33,20 @@ def test_rotating_square_centre_pressure_from_eq44():
 def test_beam_period():
     from mpisph.references import beam_period
     assert beam_period() == pytest.approx(0.2541, abs=5e-5)
+
+
+def test_earth_pressure_on_a_wall():
+    """phi = 30 degrees: K_a = 1/3, K_p = 3, Jaky's K_0 = 1/2; without cohesion the force is K gamma H^2 / 2;
+    with it the active pressure vanishes above the tension crack at 2 c / (gamma sqrt(K_a))."""
+    states = references.earth_pressure(30.0, 0.0)
+    assert states["active"][0] == pytest.approx(1 / 3) and states["passive"][0] == pytest.approx(3.0)
+    assert states["at rest"] == (pytest.approx(0.5), 0.0)
+    assert references.lateral_earth_force(states["at rest"], 20.0, 0.0, 2.0, 1.5) == pytest.approx(0.5 * 20 * 4 / 2 * 1.5)
+    active, passive = (references.earth_pressure(30.0, 10.0)[s] for s in ("active", "passive"))
+    crack = 2 * 10.0 / (20.0 * np.sqrt(1 / 3))
+    assert active[1] == pytest.approx(-20 / np.sqrt(3))
+    assert references.lateral_earth_force(active, 20.0, 0.0, 0.9 * crack, 1.0) == 0.0
+    H = 3.0
+    assert references.lateral_earth_force(active, 20.0, 0.0, H, 1.0) == pytest.approx(0.5 / 3 * 20.0 * (H - crack) ** 2)
+    assert references.lateral_earth_force(passive, 20.0, 1.0, H, 2.0) == pytest.approx(
+        2.0 * (0.5 * 3 * 20 * (H**2 - 1) + 2 * 10 * np.sqrt(3) * (H - 1)))

@@ -1,16 +1,24 @@
 """The stress diffusion of riemann_granular (mpisph/physics/drucker_prager.py) on a jittered 3D block
 of soil particles: Feng et al.'s term acts on a linear stress field that is not geostatic; the linear
-one leaves every linear field alone, conserves the stress and damps noise."""
+one leaves every linear field alone, conserves the stress and damps noise. On a laterally confined
+layer at rest (tests/cases/confined_layer.py), only Feng's term changes the lateral stress."""
+
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from lattice import lattice
+from mpirun import mpisph
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.measure import thrust_ratio
 from mpisph.neighbours import neighbour_lists
-from mpisph.physics.drucker_prager import linear_stress_diffusion, stress_diffusion, stress_gradient
+from mpisph.physics.drucker_prager import (STRESS_DIFFUSIONS, linear_stress_diffusion, stress_diffusion,
+                                           stress_gradient)
 
 DP = 0.04
 RHO0, G, K0, C0 = 1850.0, 9.8, 0.58, 50.0
+LAYER = str(Path(__file__).parent / "cases" / "confined_layer.py")
 
 
 @pytest.fixture(scope="module")
@@ -72,3 +80,27 @@ def test_the_linear_diffusion_conserves_and_damps_noise(block):
     total = np.abs(volume[:, None] * rate).sum(axis=0)
     assert np.all(np.abs((volume[:, None] * rate).sum(axis=0)) < 1e-12 * total)
     assert np.sum(volume[:, None] * noise * rate) < 0.0
+
+
+@pytest.fixture(scope="module")
+def confined_layers(tmp_path_factory):
+    """{stress_diffusion: the last frame} of tests/cases/confined_layer.py run to 1 s on one rank."""
+    out = {}
+    for diffusion in STRESS_DIFFUSIONS:
+        d = tmp_path_factory.mktemp(f"layer_{diffusion}")
+        r = mpisph([LAYER, "--set", f"stress_diffusion={diffusion}", "--out", d, "--quiet"])
+        assert r.returncode == 0, r.stderr
+        out[diffusion] = read_frame(list_frames(d)[-1])
+    return out
+
+
+def test_a_confined_layer_at_rest_keeps_its_lateral_stress_without_feng_s_term(confined_layers):
+    """The thrust ratio (mpisph/measure.py) at 1 s: without diffusion within 2 % of nu / (1 - nu) =
+    0.4286 (0.421), with the linear form within 10 % (0.398). Feng's term, which subtracts a lateral
+    stress of (1 - sin phi) sigma_v = 0.577 sigma_v, drives it down instead (0.279; 0.21 from 2 s
+    on, docs/FLUME.md): it rewrites the lateral stress of a soil at rest in equilibrium."""
+    elastic = 0.3 / 0.7
+    k = {diffusion: thrust_ratio(frame) for diffusion, frame in confined_layers.items()}
+    assert k["none"] == pytest.approx(elastic, rel=0.02)
+    assert k["linear"] == pytest.approx(elastic, rel=0.10)
+    assert k["geostatic"] < 0.75 * elastic

@@ -61,7 +61,7 @@ DIFFUSION_ZETA = 0.1
 PLASTIC_STRAIN = Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]")
 STRESS_GRADIENT = Field("stress_gradient", (6, "dim"), np.float64,
                         "gradient of each packed stress component (stress_diffusion=linear) [Pa/m]")
-STRESS_DIFFUSIONS = ("geostatic", "linear")  # the choices of the option stress_diffusion, the default first
+STRESS_DIFFUSIONS = ("geostatic", "linear", "none")  # the choices of the option stress_diffusion, the default first
 
 
 @njit(cache=True)
@@ -252,23 +252,23 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, wall_di
                 stress[i, SYM3[a, b]] = sig[a, b]
 
 
-def geostatic_stress(x, top, soil, g):
+def geostatic_stress(x, top, soil, g, k_lateral=None):
     """Initial stress (n, 3, 3) at rest under a level surface at height ``top``: sigma_v =
-    -rho0 g (top - y) on the vertical (last) axis, sigma_h = (1 - sin phi) sigma_v on the others
-    (also out of plane in 2D)."""
+    -rho0 g (top - y) on the vertical (last) axis, sigma_h = K sigma_v on the others (also out of
+    plane in 2D), K = ``k_lateral`` or, if None, Jaky's 1 - sin phi."""
     stress = np.zeros((len(x), 3, 3))
     vertical = x.shape[1] - 1
     sv = -soil.rho0 * g * (top - x[:, vertical])
     for a in range(3):
-        stress[:, a, a] = sv if a == vertical else soil.k0 * sv
+        stress[:, a, a] = sv if a == vertical else (soil.k0 if k_lateral is None else k_lateral) * sv
     return stress
 
 
 class RiemannGranular(SolidScheme):
     """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
     as printed (solid.py says why). Options ``limiter``: the pairs the limiter damps,
-    ``separating`` or ``approaching``; ``stress_diffusion``: ``geostatic`` (Feng et al.) or
-    ``linear`` (module docstring)."""
+    ``separating`` or ``approaching``; ``stress_diffusion``: ``geostatic`` (Feng et al.),
+    ``linear`` (module docstring) or ``none``."""
 
     name = "riemann_granular"
     materials = (DruckerPrager,)
@@ -282,9 +282,9 @@ class RiemannGranular(SolidScheme):
         self.eta = 20.0 * case.dim  # 000_ Sec. 3.1.3
         self.damped = limited_pairs_sign(self)
         self.g = float(np.linalg.norm(case.gravity))
-        self.linear_diffusion = self.option_choice("stress_diffusion", STRESS_DIFFUSIONS) == "linear"
+        self.diffusion = self.option_choice("stress_diffusion", STRESS_DIFFUSIONS)
         self.fields = (SolidScheme.base_fields + (PLASTIC_STRAIN,)
-                       + ((STRESS_GRADIENT,) if self.linear_diffusion else ()))
+                       + ((STRESS_GRADIENT,) if self.diffusion == "linear" else ()))
 
     def initial_density(self, pressure):
         return np.full_like(pressure, self.material.rho0)
@@ -297,14 +297,16 @@ class RiemannGranular(SolidScheme):
         pa, m = ctx.particles, self.material
         n = pa.n_owned
         diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
-        if self.linear_diffusion:
+        if self.diffusion == "linear":
             stress_gradient(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, ctx.kernel.params,
                             pa.stress_gradient)
             ctx.refresh(["stress_gradient"])
             linear_stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.stress_gradient, pa.mass, pa.rho,
                                     pa.kind, m.c0, ctx.kernel.params, diffusion)
-        else:
+        elif self.diffusion == "geostatic":
             stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
                              m.k0, m.c0, ctx.kernel.params, diffusion)
+        else:
+            diffusion[:] = 0.0
         drucker_prager_update(n, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)
