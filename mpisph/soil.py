@@ -35,9 +35,10 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
 
 def stress_diffusion_param():
     """The parameter choosing riemann_granular's stress diffusion (physics/drucker_prager.py)."""
-    return Param(STRESS_DIFFUSIONS[0], "-", "riemann_granular's stress diffusion: geostatic (Feng et al. 2021, "
-                 "as 000_: sigma less its geostatic part), linear (less each component's local linear part, "
-                 "as delta-SPH's density diffusion; physics/drucker_prager.py) or none", choices=STRESS_DIFFUSIONS)
+    return Param(STRESS_DIFFUSIONS[0], "-", "riemann_granular's stress diffusion: linear (sigma less each "
+                 "component's local linear part, as delta-SPH's density diffusion; physics/drucker_prager.py), "
+                 "geostatic (Feng et al. 2021, as 000_: sigma less its geostatic part) or none",
+                 choices=STRESS_DIFFUSIONS)
 
 
 def scheme_params(alpha=1.0, beta=0.0):

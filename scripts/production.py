@@ -3,9 +3,11 @@
     .venv/bin/python scripts/production.py [--ranks 2] [--only cube_failure_3d|flume_3d ...] [--reuse]
 
 Each run's command, wall time and throughput are printed in the page beside its pictures; each
-case runs twice more with the options of 3D UTVF (``VARIANTS``): the free-surface particles beside
+case runs again with other settings (``VARIANTS``): 000_'s stress diffusion (Feng et al.'s, the
+default until session 26) alone and with the options of 3D UTVF (the free-surface particles beside
 an edge left in place, then also the near-surface particles projected on the outermost particles'
-normals; their clustering is reported beside the default's. The script exits non-zero, listing
+normals), and, for the cube, the defaults with both UTVF options; their clustering is reported
+beside the default's. The script exits non-zero, listing
 them, when a figure of the default run misses what issue 15 asks: clustering above 0.1 %
 (tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end at
 least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. ``--reuse``
@@ -64,28 +66,44 @@ def run(case, args, ranks, reuse, name=None):
     return out, shown, float(last[0]), float(last[1]) / ranks, blow_up.group(1)
 
 
-# the options of 3D UTVF (stabilisers/transport_velocity.py): {run name suffix: (label, arguments)}
-VARIANTS = {
-    "edge_neighbours_kept": ("UTVF, edge neighbours kept", ["--set", "utvf_edge_neighbours=kept"]),
-    "outermost_normals": ("UTVF, edge neighbours kept, near-surface normals from the outermost particles",
-                          ["--set", "utvf_edge_neighbours=kept", "utvf_near_surface_normal=outermost"]),
+# other settings of each case: 3D UTVF's options (stabilisers/transport_velocity.py) and 000_'s
+# stress diffusion, Feng et al.'s geostatic form (physics/drucker_prager.py):
+# {case: {run name suffix: (label, arguments)}}
+KEPT = "utvf_edge_neighbours=kept"
+OUTERMOST = "utvf_near_surface_normal=outermost"
+GEOSTATIC = "stress_diffusion=geostatic"
+_GEOSTATIC_VARIANTS = {
+    "geostatic_diffusion": ("000_: Feng's stress diffusion, UTVF as printed", ["--set", GEOSTATIC]),
+    "geostatic_edge_neighbours_kept": ("Feng's stress diffusion, UTVF edge neighbours kept", ["--set", GEOSTATIC, KEPT]),
+    "geostatic_outermost_normals": ("Feng's stress diffusion, UTVF edge neighbours kept, near-surface normals from "
+                                    "the outermost particles", ["--set", GEOSTATIC, KEPT, OUTERMOST]),
 }
-DEFAULT_LABEL = "UTVF as printed (Eq. 37, the default)"
+VARIANTS = {
+    "cube_failure_3d": {"outermost_normals": ("UTVF edge neighbours kept, near-surface normals from the outermost "
+                                              "particles", ["--set", KEPT, OUTERMOST]), **_GEOSTATIC_VARIANTS},
+    "flume_3d": _GEOSTATIC_VARIANTS,
+}
+DEFAULT_LABEL = "the defaults: linear stress diffusion, UTVF as printed (Eq. 37)"
 
 
 def variant_runs(case, ranks, reuse, times):
     """Each variant's run of ``case``: {suffix: (output directory, command, blow-up message or None,
     ``instability_rows`` at ``times``)}."""
     runs = {}
-    for suffix, (_, args) in VARIANTS.items():
+    for suffix, (_, args) in VARIANTS[case].items():
         out, cmd, _, _, blow_up = run(case, args, ranks, reuse, name=f"{case}_{suffix}")
         runs[suffix] = out, cmd, blow_up, instability_rows(out, times)
     return runs
 
 
-def variants_table(rows, runs):
-    """``instability_table`` of the default's ``rows`` and the variants' ``runs``."""
-    return instability_table({DEFAULT_LABEL: rows, **{VARIANTS[s][0]: r[3] for s, r in runs.items()}})
+def variants_table(case, rows, runs):
+    """``instability_table`` of the default's ``rows`` and the variants' ``runs`` of ``case``."""
+    return instability_table({DEFAULT_LABEL: rows, **{VARIANTS[case][s][0]: r[3] for s, r in runs.items()}})
+
+
+def clustered_at(out, times):
+    """``clustered_summary`` of the frames of ``out`` nearest ``times``, joined by '; '."""
+    return "; ".join(clustered_summary(f) for f in render.frames_at(out, times))
 
 
 def stopped(blow_up):
@@ -127,8 +145,6 @@ def cube_failure_3d(ranks, reuse):
     out, cmd, wall, rate, blow_up = run("cube_failure_3d", [], ranks, reuse)
     rows = instability_rows(out, (0.5, 1.0))
     variants = variant_runs("cube_failure_3d", ranks, reuse, (0.5, 1.0))
-    kept_out, kept_cmd, kept_blow_up, _ = variants["edge_neighbours_kept"]
-    normals_out, normals_cmd, normals_blow_up, _ = variants["outermost_normals"]
     snap = render.snapshots_png(out, (0.0, 0.5, 1.0), IMG / "cube_failure_3d_speed.png", view=(25.0, -50.0),
                                 title="cube_failure_3d: speed")
     diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
@@ -150,21 +166,22 @@ def cube_failure_3d(ranks, reuse):
     text = [
         "## The 3D cohesive cube (000_ Sec. 5.3, Figs. 22-24)",
         "",
-        f"`{cmd}`: {n} particles, dp = 0.04 m, UTVF, to t = 1 s: **wall time {wall:.0f} s, "
+        f"`{cmd}`: {n} particles, dp = 0.04 m, UTVF and the linear stress diffusion, to t = 1 s: **wall time {wall:.0f} s, "
         f"{rate:.3g} particle-steps/s/core**." + (f" **The run stopped: {blow_up}.**" if blow_up else ""),
         "",
-        *variants_table(rows, variants),
+        *variants_table("cube_failure_3d", rows, variants),
         "",
         "As printed, Eq. 37 moves a perfect 3D lattice's face particles towards its edges, where they crowd "
-        f"against the unshifted edge particles. `{kept_cmd}`{stopped(kept_blow_up)} leaves the free-surface "
-        f"particles within h of an edge or corner (div r < 0.6 d) unshifted. `{normals_cmd}`"
-        f"{stopped(normals_blow_up)} also projects a near-surface particle's shift on the mean normal of the "
-        "outermost particles within h, which on a disordered surface is the surface's normal where its own is not "
-        "(mpisph/stabilisers/transport_velocity.py). The clustered particles (scripts/clustered.py): "
-        + "; ".join(clustered_summary(f) for f in render.frames_at(out, (0.5, 1.0))) + " (as printed); "
-        + "; ".join(clustered_summary(f) for f in render.frames_at(kept_out, (0.5, 1.0))) + " (edge neighbours kept); "
-        + "; ".join(clustered_summary(f) for f in render.frames_at(normals_out, (0.5, 1.0)))
-        + " (and the outermost normals).",
+        f"against the unshifted edge particles. `{KEPT}` leaves the free-surface particles within h of an edge "
+        f"or corner (div r < 0.6 d) unshifted; `{OUTERMOST}` also projects a near-surface particle's shift on "
+        "the mean normal of the outermost particles within h, which on a disordered surface is the surface's "
+        "normal where its own is not (mpisph/stabilisers/transport_velocity.py). The default stress diffusion "
+        f"takes each stress component less its local linear part; `{GEOSTATIC}` is 000_'s (Feng et al.'s), "
+        "the default until session 26 (mpisph/physics/drucker_prager.py). The rows' commands: "
+        + "; ".join(f"{VARIANTS['cube_failure_3d'][s][0]}: `{c}`{stopped(b)}" for s, (_, c, b, _) in variants.items())
+        + ". The clustered particles (scripts/clustered.py), with the defaults: " + clustered_at(out, (0.5, 1.0))
+        + "".join(f"; {VARIANTS['cube_failure_3d'][s][0]}: " + clustered_at(o, (0.5, 1.0))
+                  for s, (o, _, _, _) in variants.items()) + ".",
         "",
         f"![speed]({Path(snap).relative_to(DOCS)})",
         "",
@@ -222,11 +239,8 @@ def flume_3d(ranks, reuse):
     alpha_peak = force[peak] / flux[before] if flux[before] > 0 else float("nan")
     rows = instability_rows(out, (1.0, 2.0, 4.0))
     variants = variant_runs("flume_3d", ranks, reuse, (1.0, 2.0, 4.0))
-    kept_out, kept_cmd, kept_blow_up, _ = variants["edge_neighbours_kept"]
-    normals_out, normals_cmd, normals_blow_up, _ = variants["outermost_normals"]
-    _, kept_speed = max_speeds(kept_out)
-    _, normals_speed = max_speeds(normals_out)
-    kept_at_1, = render.frames_at(kept_out, (1.0,))
+    kept_at_1, = render.frames_at(variants["geostatic_edge_neighbours_kept"][0], (1.0,))
+    cube_kept_at_1, = render.frames_at(RUNS / "cube_failure_3d_geostatic_edge_neighbours_kept", (1.0,))
     snap = render.snapshots_png(out, (0.0, 1.0, 2.0, 4.0), IMG / "flume_3d_speed.png", view=(30.0, -65.0),
                                 title="flume_3d: speed")
     fig, ax = plt.subplots(1, 3, figsize=(15, 4))
@@ -257,7 +271,7 @@ def flume_3d(ranks, reuse):
     text = [
         "## The flume (000_ Sec. 5.4, Fig. 25)",
         "",
-        f"`{cmd}`: {n} soil particles and {len(first['x']) - n} wall particles, dp = 0.04 m, UTVF, to t = 4 s: "
+        f"`{cmd}`: {n} soil particles and {len(first['x']) - n} wall particles, dp = 0.04 m, UTVF and the linear stress diffusion, to t = 4 s: "
         f"**wall time {wall:.0f} s, {rate:.3g} particle-steps/s/core**. Geometry: docs/FLUME.md. The density by kernel "
         "summation (the case's default since session 21; docs/FLUME.md has the run with 000_'s Eq. 16 beside it).",
         "",
@@ -272,25 +286,24 @@ def flume_3d(ranks, reuse):
         f"{alpha_peak:.2f}** (peak force over approach flux).",
         f"- At rest: the largest speed at t = {t_frames[-1]:.1f} s is {speed[-1]:.3g} m/s, "
         f"{at_rest:.2g} of its peak {speed.max():.3g} m/s (criterion: below 0.01).",
+        f"- The deposit's force on the barrier at the end: {force[-1] / 1e3:.2f} kN (docs/FLUME.md sets it "
+        "beside the classical earth pressures, scripts/deposit_stress.py).",
         f"- Load balance while the mass moves (kinetic energy above 1 % of its peak): largest imbalance "
         f"{100 * imbalance:.1f} %, {int(d['rebalances'][-1])} rebalances.",
         "- alpha uses the depth-averaged speed on the approach gauge (0.4 m upstream of the barrier, "
         "its points inside the soil) and the flow depth there (gauge approach_top), rho = rho0, w = 1 m; "
         "it is drawn while that speed is at least a tenth of its peak (the impact, not the deposit at rest).",
         "",
-        *variants_table(rows, variants),
+        *variants_table("flume_3d", rows, variants),
         "",
-        f"With the edge neighbours kept (`{kept_cmd}`{stopped(kept_blow_up)}): largest speed at the end "
-        f"{kept_speed[-1] / kept_speed.max():.2g} of its peak; the clustered particles "
-        "(scripts/clustered.py) " + clustered_summary(kept_at_1) + ", against "
-        + clustered_summary(render.frames_at(out, (1.0,))[0]) + " as printed. Beside an edge: the free-surface "
-        "particles that Eq. 37 shifts and the option leaves in place, " + edge_share(kept_at_1)
-        + " on the flowing layer at 1 s (on the cube at 1 s: "
-        + edge_share(render.frames_at(RUNS / "cube_failure_3d_edge_neighbours_kept", (1.0,))[0]) + "): the option "
-        "leaves much of the rough free surface of the thin flow unregularised. With the outermost normals as well "
-        f"(`{normals_cmd}`{stopped(normals_blow_up)}): largest speed at the end "
-        f"{normals_speed[-1] / normals_speed.max():.2g} of its peak; "
-        + clustered_summary(render.frames_at(normals_out, (1.0,))[0]) + ".",
+        "The other rows (docs/FLUME.md): "
+        + "; ".join(f"{VARIANTS['flume_3d'][s][0]} (`{c}`{stopped(b)}): largest speed at the end "
+                    f"{max_speeds(o)[1][-1] / max_speeds(o)[1].max():.2g} of its peak; "
+                    + clustered_summary(render.frames_at(o, (1.0,))[0]) for s, (o, c, b, _) in variants.items())
+        + "; with the defaults " + clustered_summary(render.frames_at(out, (1.0,))[0]) + ". Beside an edge: the "
+        "free-surface particles that Eq. 37 shifts and the kept option leaves in place, " + edge_share(kept_at_1)
+        + " on the flowing layer at 1 s (on the cube at 1 s: " + edge_share(cube_kept_at_1) + "): the option "
+        "leaves much of the rough free surface of the thin flow unregularised.",
         "",
         f"![speed]({Path(snap).relative_to(DOCS)})",
         "",

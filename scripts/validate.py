@@ -381,12 +381,20 @@ def column_collapse(ranks):
                                 ["--restart", str(list_frames(RUNS / f"column_collapse_2d_L{L}")[-1]),
                                  "--set", "stabiliser=none", "--t-end", "1.15"], ranks)
             still = np.linalg.norm(settled[-1]["v"], axis=1).max() / max(speeds)
+            # 000_'s stress diffusion (Feng et al.'s geostatic form) beside the default
+            feng, feng_diag, _ = run("column_collapse_2d_geostatic_diffusion", "column_collapse_2d",
+                                     ["--set", f"dp={dp}", f"L={L}", "stress_diffusion=geostatic"], ranks)
+            feng_energy = feng_diag["kinetic_energy"] + feng_diag["potential_energy"]
             rows += [("L = 0.2: runout [m]", f"{runout:.3f}", "0.32-0.38", "-", "[0.30, 0.40]"),
                      ("L = 0.2: column top [m]", f"{top:.4f}", "0.1", f"{100 * (top / 0.1 - 1):+.1f}%", "5%"),
                      ("L = 0.2: final / peak max speed", f"{speeds[-1] / max(speeds):.4f}", "0", "-", "< 0.01"),
                      ("L = 0.2: the same, 0.15 s later without the UTVF shift", f"{still:.4f}", "0", "-", "< 0.01"),
                      ("L = 0.2: final / initial mechanical energy", f"{ratio:.3f}", "0.69 +- 0.03",
-                      f"{ratio - 0.69:+.3f}", "+- 0.05")]
+                      f"{ratio - 0.69:+.3f}", "+- 0.05"),
+                     ("L = 0.2, stress_diffusion=geostatic (000_): runout [m] / top [m] / final / peak max speed "
+                      "/ energy ratio", f"{measure.runout(feng[-1], dp):.3f} / "
+                      f"{measure.deposit_height(feng[-1], dp, 0.05):.4f} / {final_over_peak_speed(feng):.4f} / "
+                      f"{feng_energy[-1] / feng_energy[0]:.3f}", "0.32-0.38 / 0.1 / 0 / 0.69 +- 0.03", "-", "-")]
         else:
             rows += [("L = 0.1: runout [m] / top [m]", f"{runout:.3f} / {top:.4f}", "-", "-", "runs"),
                      ("L = 0.1: final / peak max speed, energy ratio",
@@ -395,7 +403,9 @@ def column_collapse(ranks):
     note = ("Runout: the right end of the connected deposit (grains thrown ahead of a gap do not count); "
             "profiles are the highest particle per dp-wide bin. The paper's text does not give the times of "
             "its Figs. 15-16 nor the experimental profiles, so profiles are drawn every 0.1 s without an "
-            "experimental overlay. L = 0.1 is the same command with `--set L=0.1`. "
+            "experimental overlay. L = 0.1 is the same command with `--set L=0.1`; the last L = 0.2 row with "
+            "`--set stress_diffusion=geostatic`, the stress diffusion 000_ uses (Feng et al.'s; the default "
+            "diffuses each stress component less its local linear part, mpisph/physics/drucker_prager.py). "
             "The granular Riemann limiter damps pairs that move apart, as the paper's code does "
             "(mpisph/physics/solid.py says why); damping approaching pairs instead, as the text of the printed "
             "Eq. 20 suggests, gave a runout of 0.413 m here (0.401 m without a stabiliser), with grains sliding "
@@ -433,20 +443,21 @@ def cohesive_failure(ranks):
             rows.insert(0, ("crest crack behind the face [m]", f"{crack:.2f}", "1.2-1.5", "-", "[1.0, 1.7]"))
             rows.insert(1, ("final / peak max speed", f"{final_over_peak_speed(frames):.3f}", "0", "-", "-"))
             shown = cmd
-    # the soil's stress diffusion less each component's linear part (physics/drucker_prager.py)
-    linear, _, _ = run("cohesive_failure_2d_utvf_linear_diffusion", "cohesive_failure_2d",
-                       ["--set", "stabiliser=utvf", "stress_diffusion=linear"], ranks)
-    crack = measure.crest_crack(linear[0], linear[-1], dp, 4.0, 0.05 * 2.0)
-    m = tensile_instability(read_frame(list_frames(RUNS / "cohesive_failure_2d_utvf_linear_diffusion")[-1],
+    # 000_'s stress diffusion, Feng et al.'s geostatic form (physics/drucker_prager.py)
+    feng, _, _ = run("cohesive_failure_2d_utvf_geostatic_diffusion", "cohesive_failure_2d",
+                     ["--set", "stabiliser=utvf", "stress_diffusion=geostatic"], ranks)
+    crack = measure.crest_crack(feng[0], feng[-1], dp, 4.0, 0.05 * 2.0)
+    m = tensile_instability(read_frame(list_frames(RUNS / "cohesive_failure_2d_utvf_geostatic_diffusion")[-1],
                                        walls=True))
-    rows.append(("utvf, stress_diffusion=linear: crest crack [m] / final / peak max speed / clustering at 2 s",
-                 f"{crack:.2f} / {final_over_peak_speed(linear):.3f} / {100 * m['clustering']:.2f}%",
+    rows.append(("utvf, stress_diffusion=geostatic (000_): crest crack [m] / final / peak max speed / clustering "
+                 "at 2 s", f"{crack:.2f} / {final_over_peak_speed(feng):.3f} / {100 * m['clustering']:.2f}%",
                  "1.2-1.5 / 0 / 0", "-", "-"))
     image = save(fig, "cohesive_failure_2d.png")
     note = ("Crest crack: the leftmost particle of the initial top layer that sank by more than 0.05 H. "
             "The same command with `--set stabiliser=tvf` and `none` gives the other rows, and with "
-            "`--set stabiliser=utvf stress_diffusion=linear` the last one (Feng's stress diffusion less "
-            "each component's linear part instead of the geostatic field, docs/FLUME.md).")
+            "`--set stabiliser=utvf stress_diffusion=geostatic` the last one (the stress diffusion 000_ uses, "
+            "Feng et al.'s: sigma less its geostatic part, where the default takes each component's local "
+            "linear part; docs/FLUME.md).")
     return "Cohesive soil cut (dp = L/100)", shown, rows, image, note
 
 

@@ -23,9 +23,10 @@ CASES = {
     # the soil's density by kernel summation every configuration (free_surface: the blend near the surface)
     "column_collapse_2d reinit": (["--set", "dp=0.01", "density_reinit=free_surface", "--t-end", "0.04",
                                    "--output-interval", "0.02"], 0.6),
-    # the linear stress diffusion: each component's gradient read from ghosts
-    "column_collapse_2d linear_diffusion": (["--set", "dp=0.01", "stress_diffusion=linear", "--t-end", "0.04",
-                                             "--output-interval", "0.02"], 0.6),
+    # 000_'s stress diffusion (Feng et al.'s geostatic form; the default, linear, reads each
+    # component's gradient from ghosts)
+    "column_collapse_2d geostatic_diffusion": (["--set", "dp=0.01", "stress_diffusion=geostatic", "--t-end", "0.04",
+                                                "--output-interval", "0.02"], 0.6),
     # TVF: the shift on inner particles only (a key's first word is the case)
     "column_collapse_2d tvf": (["--set", "dp=0.01", "stabiliser=tvf", "--t-end", "0.04", "--output-interval",
                                 "0.02"], 0.6),

@@ -16,31 +16,34 @@ elastic. The accumulated deviatoric plastic strain adds dt gamma_dot / sqrt(3)
 (the equivalent measure sqrt(2/3 e:e) of the deviatoric part of
 gamma_dot dg/dsigma) and, for the return mapping, sqrt(2/3) |Delta s| / 2G.
 
-Stress diffusion (Feng et al. 2021) smooths sigma minus its geostatic part
-sigma_v = -rho0 g (H - y), sigma_h = (1 - sin phi) sigma_v:
-
-    dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - sigma^geo_ij) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
-
-zeta = 0.1, over material neighbours. The scheme's option
-``stress_diffusion = "linear"`` subtracts instead each component's local
-linear part, as delta-SPH's density diffusion does (Antuono et al. 2010):
+Stress diffusion smooths the stress over material neighbours with zeta = 0.1.
+The default (``stress_diffusion = "linear"``) diffuses each component less
+its local linear part, as delta-SPH's density diffusion does (Antuono et al. 2010):
 
     dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - (G_i + G_j) . r_ij / 2) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
 
 G = grad sigma with the correction matrix over the material neighbours, so
-that G is exact and the term zero on any linear stress field, the geostatic
-one included; the pair term is antisymmetric, so sum_i V_i dsigma_i/dt = 0
-as with Feng's. Why: a resting deposit keeps any velocity v whose elastic
-stress rate C : L(v) the diffusion cancels while the UTVF shift holds the
-grains in place (docs/FLUME.md). Feng's term vanishes only on the geostatic
-field of a level surface; a deposit on a slope, against a barrier or between
-walls is not geostatic. On a 10^3 block jittered by 0.2 dp (masses and
-densities varied by 10 and 5 %) with horizontal gradients of 20 kPa/m in
-sigma_xx and 10 kPa/m in sigma_xy over the geostatic field, Feng's term
-gives up to 1.5e5 Pa/s and the linear one 1.7e-9 Pa/s
-(tests/test_stress_diffusion.py). The default is Feng's, as
-000_ uses; docs/FLUME.md has the flume with both. The deviators here are 3D
-(the stress tensor is 3 x 3 in 2D too, plane strain); p = -tr(sigma)/3.
+that G is exact and the term zero on any linear stress field; the pair term
+is antisymmetric, so sum_i V_i dsigma_i/dt = 0. ``stress_diffusion =
+"geostatic"`` is the form 000_ uses (Feng et al. 2021): sigma less its
+geostatic part sigma_v = -rho0 g (H - y), sigma_h = (1 - sin phi) sigma_v,
+
+    dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - sigma^geo_ij) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
+
+which, within a kernel radius of a free surface or a wall, vanishes only on
+that field of a level surface; ``"none"`` leaves the stress alone. Why the default departs from 000_: a resting deposit keeps any
+velocity whose elastic stress rate the diffusion cancels while the UTVF
+shift holds the grains in place, and a deposit on a slope, against a barrier
+or between walls is not geostatic. On a 10^3 block jittered by 0.2 dp with
+horizontal gradients of 20 kPa/m in sigma_xx and 10 kPa/m in sigma_xy over
+the geostatic field, Feng's term gives up to 1.5e5 Pa/s and the linear one
+1.7e-9 Pa/s; a laterally confined layer at rest under the elastic lateral
+stress nu / (1 - nu) sigma_v keeps it within 10 % with the linear form and
+without diffusion, where Feng's drives it from 0.43 to 0.28 sigma_v in 1 s
+(tests/test_stress_diffusion.py). docs/FLUME.md has the flume with both forms.
+
+The deviators here are 3D (the stress tensor is 3 x 3 in 2D too, plane
+strain); p = -tr(sigma)/3.
 """
 
 import math
@@ -61,7 +64,7 @@ DIFFUSION_ZETA = 0.1
 PLASTIC_STRAIN = Field("plastic_strain", (), np.float64, "accumulated deviatoric plastic strain [-]")
 STRESS_GRADIENT = Field("stress_gradient", (6, "dim"), np.float64,
                         "gradient of each packed stress component (stress_diffusion=linear) [Pa/m]")
-STRESS_DIFFUSIONS = ("geostatic", "linear", "none")  # the choices of the option stress_diffusion, the default first
+STRESS_DIFFUSIONS = ("linear", "geostatic", "none")  # the choices of the option stress_diffusion, the default first
 
 
 @njit(cache=True)
@@ -267,8 +270,8 @@ def geostatic_stress(x, top, soil, g, k_lateral=None):
 class RiemannGranular(SolidScheme):
     """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
     as printed (solid.py says why). Options ``limiter``: the pairs the limiter damps,
-    ``separating`` or ``approaching``; ``stress_diffusion``: ``geostatic`` (Feng et al.),
-    ``linear`` (module docstring) or ``none``."""
+    ``separating`` or ``approaching``; ``stress_diffusion``: ``linear`` (module docstring),
+    ``geostatic`` (Feng et al., as 000_) or ``none``."""
 
     name = "riemann_granular"
     materials = (DruckerPrager,)
