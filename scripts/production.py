@@ -88,17 +88,19 @@ DEFAULT_LABEL = "the defaults: linear stress diffusion, UTVF as printed (Eq. 37)
 
 def variant_runs(case, ranks, reuse, times):
     """Each variant's run of ``case``: {suffix: (output directory, command, blow-up message or None,
-    ``instability_rows`` at ``times``)}."""
+    ``instability_rows`` at ``times``, particle-steps/s/core)}."""
     runs = {}
     for suffix, (_, args) in VARIANTS[case].items():
-        out, cmd, _, _, blow_up = run(case, args, ranks, reuse, name=f"{case}_{suffix}")
-        runs[suffix] = out, cmd, blow_up, instability_rows(out, times)
+        out, cmd, _, rate, blow_up = run(case, args, ranks, reuse, name=f"{case}_{suffix}")
+        runs[suffix] = out, cmd, blow_up, instability_rows(out, times), rate
     return runs
 
 
-def variants_table(case, rows, runs):
-    """``instability_table`` of the default's ``rows`` and the variants' ``runs`` of ``case``."""
-    return instability_table({DEFAULT_LABEL: rows, **{VARIANTS[case][s][0]: r[3] for s, r in runs.items()}})
+def variants_table(case, rows, rate, runs):
+    """``instability_table`` of the default's ``rows`` (its run at ``rate`` particle-steps/s/core)
+    and the variants' ``runs`` of ``case``, each label with its throughput."""
+    return instability_table({f"{DEFAULT_LABEL} ({rate:.3g} particle-steps/s/core)": rows,
+                              **{f"{VARIANTS[case][s][0]} ({r[4]:.3g})": r[3] for s, r in runs.items()}})
 
 
 def clustered_at(out, times):
@@ -169,7 +171,7 @@ def cube_failure_3d(ranks, reuse):
         f"`{cmd}`: {n} particles, dp = 0.04 m, UTVF and the linear stress diffusion, to t = 1 s: **wall time {wall:.0f} s, "
         f"{rate:.3g} particle-steps/s/core**." + (f" **The run stopped: {blow_up}.**" if blow_up else ""),
         "",
-        *variants_table("cube_failure_3d", rows, variants),
+        *variants_table("cube_failure_3d", rows, rate, variants),
         "",
         "As printed, Eq. 37 moves a perfect 3D lattice's face particles towards its edges, where they crowd "
         f"against the unshifted edge particles. `{KEPT}` leaves the free-surface particles within h of an edge "
@@ -178,10 +180,10 @@ def cube_failure_3d(ranks, reuse):
         "normal where its own is not (mpisph/stabilisers/transport_velocity.py). The default stress diffusion "
         f"takes each stress component less its local linear part; `{GEOSTATIC}` is 000_'s (Feng et al.'s), "
         "the default until session 26 (mpisph/physics/drucker_prager.py). The rows' commands: "
-        + "; ".join(f"{VARIANTS['cube_failure_3d'][s][0]}: `{c}`{stopped(b)}" for s, (_, c, b, _) in variants.items())
+        + "; ".join(f"{VARIANTS['cube_failure_3d'][s][0]}: `{c}`{stopped(b)}" for s, (_, c, b, _, _) in variants.items())
         + ". The clustered particles (scripts/clustered.py), with the defaults: " + clustered_at(out, (0.5, 1.0))
         + "".join(f"; {VARIANTS['cube_failure_3d'][s][0]}: " + clustered_at(o, (0.5, 1.0))
-                  for s, (o, _, _, _) in variants.items()) + ".",
+                  for s, (o, _, _, _, _) in variants.items()) + ".",
         "",
         f"![speed]({Path(snap).relative_to(DOCS)})",
         "",
@@ -294,12 +296,12 @@ def flume_3d(ranks, reuse):
         "its points inside the soil) and the flow depth there (gauge approach_top), rho = rho0, w = 1 m; "
         "it is drawn while that speed is at least a tenth of its peak (the impact, not the deposit at rest).",
         "",
-        *variants_table("flume_3d", rows, variants),
+        *variants_table("flume_3d", rows, rate, variants),
         "",
         "The other rows (docs/FLUME.md): "
         + "; ".join(f"{VARIANTS['flume_3d'][s][0]} (`{c}`{stopped(b)}): largest speed at the end "
                     f"{max_speeds(o)[1][-1] / max_speeds(o)[1].max():.2g} of its peak; "
-                    + clustered_summary(render.frames_at(o, (1.0,))[0]) for s, (o, c, b, _) in variants.items())
+                    + clustered_summary(render.frames_at(o, (1.0,))[0]) for s, (o, c, b, _, _) in variants.items())
         + "; with the defaults " + clustered_summary(render.frames_at(out, (1.0,))[0]) + ". Beside an edge: the "
         "free-surface particles that Eq. 37 shifts and the kept option leaves in place, " + edge_share(kept_at_1)
         + " on the flowing layer at 1 s (on the cube at 1 s: " + edge_share(cube_kept_at_1) + "): the option "
