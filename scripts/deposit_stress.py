@@ -79,7 +79,7 @@ def main():
             force, top, kx, ky = frame_row(frame, face, ys, a.gap)
             barrier = diag["force_barrier_x"][np.argmin(np.abs(diag["t"] - frame["t"]))]
             print(f"{frame['t']:.2f} | {barrier / 1e3:.2f} | {force / 1e3:.2f} | {top:.3f} | {kx:.3f} | {ky:.3f}")
-        _, top, _, _ = frame_row(last, face, ys, a.gap)
+        # top: the last frame's, with which the loop ends
         forces = classical_forces(last["params"], top, height, ys[1] - ys[0])
         print(f"classical forces on the barrier under a level surface at {top:.3f} m [kN]: "
               + ", ".join(f"{name} {f / 1e3:.2f}" for name, f in forces.items()))

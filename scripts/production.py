@@ -216,6 +216,12 @@ def max_speeds(out):
     return np.array(t), np.array(v)
 
 
+def at_the_end(out):
+    """The largest speed of the last frame of ``out`` over its largest over the frames."""
+    _, speed = max_speeds(out)
+    return speed[-1] / speed.max()
+
+
 def flume_3d(ranks, reuse):
     out, cmd, wall, rate, blow_up = run("flume_3d", [], ranks, reuse)
     d = read_diagnostics(out / "diagnostics.csv")
@@ -300,7 +306,7 @@ def flume_3d(ranks, reuse):
         "",
         "The other rows (docs/FLUME.md): "
         + "; ".join(f"{VARIANTS['flume_3d'][s][0]} (`{c}`{stopped(b)}): largest speed at the end "
-                    f"{max_speeds(o)[1][-1] / max_speeds(o)[1].max():.2g} of its peak; "
+                    f"{at_the_end(o):.2g} of its peak; "
                     + clustered_summary(render.frames_at(o, (1.0,))[0]) for s, (o, c, b, _, _) in variants.items())
         + "; with the defaults " + clustered_summary(render.frames_at(out, (1.0,))[0]) + ". Beside an edge: the "
         "free-surface particles that Eq. 37 shifts and the kept option leaves in place, " + edge_share(kept_at_1)

@@ -31,9 +31,10 @@ geostatic part sigma_v = -rho0 g (H - y), sigma_h = (1 - sin phi) sigma_v,
     dsigma_i/dt += 2 zeta h c0 sum_j V_j (sigma_ij - sigma^geo_ij) r_ij W'_ij / (r_ij^2 + 0.01 h^2),
 
 which, within a kernel radius of a free surface or a wall, vanishes only on
-that field of a level surface; ``"none"`` leaves the stress alone. Why the default departs from 000_: a resting deposit keeps any
-velocity whose elastic stress rate the diffusion cancels while the UTVF
-shift holds the grains in place, and a deposit on a slope, against a barrier
+that field of a level surface; ``"none"`` leaves the stress alone. Why the
+default departs from 000_: a resting deposit keeps any velocity whose
+elastic stress rate the diffusion cancels while the UTVF shift holds the
+grains in place, and a deposit on a slope, against a barrier
 or between walls is not geostatic. On a 10^3 block jittered by 0.2 dp with
 horizontal gradients of 20 kPa/m in sigma_xx and 10 kPa/m in sigma_xy over
 the geostatic field, Feng's term gives up to 1.5e5 Pa/s and the linear one
@@ -65,6 +66,7 @@ PLASTIC_STRAIN = Field("plastic_strain", (), np.float64, "accumulated deviatoric
 STRESS_GRADIENT = Field("stress_gradient", (6, "dim"), np.float64,
                         "gradient of each packed stress component (stress_diffusion=linear) [Pa/m]")
 STRESS_DIFFUSIONS = ("linear", "geostatic", "none")  # the choices of the option stress_diffusion, the default first
+NO_DIFFUSION = np.zeros((0, 6))  # a diffusion without rows: plastic_stress_rate adds none
 
 
 @njit(cache=True)
@@ -262,8 +264,9 @@ def geostatic_stress(x, top, soil, g, k_lateral=None):
     stress = np.zeros((len(x), 3, 3))
     vertical = x.shape[1] - 1
     sv = -soil.rho0 * g * (top - x[:, vertical])
+    k = soil.k0 if k_lateral is None else k_lateral
     for a in range(3):
-        stress[:, a, a] = sv if a == vertical else (soil.k0 if k_lateral is None else k_lateral) * sv
+        stress[:, a, a] = sv if a == vertical else k * sv
     return stress
 
 
@@ -299,7 +302,10 @@ class RiemannGranular(SolidScheme):
     def update_stress(self, ctx, dt):
         pa, m = ctx.particles, self.material
         n = pa.n_owned
-        diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
+        if self.diffusion == "none":
+            diffusion = NO_DIFFUSION
+        else:
+            diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
         if self.diffusion == "linear":
             stress_gradient(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, ctx.kernel.params,
                             pa.stress_gradient)
@@ -309,7 +315,5 @@ class RiemannGranular(SolidScheme):
         elif self.diffusion == "geostatic":
             stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
                              m.k0, m.c0, ctx.kernel.params, diffusion)
-        else:
-            diffusion[:] = 0.0
         drucker_prager_update(n, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
                               dt, pa.stress, pa.plastic_strain)
