@@ -104,3 +104,29 @@ def test_a_confined_layer_at_rest_keeps_its_lateral_stress_without_feng_s_term(c
     assert k["none"] == pytest.approx(elastic, rel=0.02)
     assert k["linear"] == pytest.approx(elastic, rel=0.10)
     assert k["geostatic"] < 0.75 * elastic
+
+
+def test_the_stress_budget_script_splits_the_lateral_stress_change(tmp_path):
+    """scripts/stress_budget.py on the confined layer with Feng's term, to 1 s: the diffusion's parts
+    of the three bands sum to zero (it conserves sum V sigma), it makes the floor's band more
+    compressive and the layer above less, the elastic response takes the floor's band the other way
+    and further, and the causes add up to the change of sum V sigma_xx (to 5 %: the volumes change
+    with the summed density)."""
+    import re
+    import subprocess
+    import sys
+
+    script = Path(__file__).parent.parent / "scripts" / "stress_budget.py"
+    run = subprocess.run([sys.executable, str(script), LAYER, "--set", "stress_diffusion=geostatic", "--t-end", "1",
+                          "--out", str(tmp_path / "budget")], capture_output=True, text=True, timeout=300, check=True)
+    lines = [line for line in run.stdout.splitlines() if line.startswith("t ")]
+    table, band = {}, None
+    for b, part, value in re.findall(r"(?:(top|middle|bottom): )?(diffusion|elastic|plastic) (-?\d+)", lines[-1]):
+        band = b or band
+        table[band, part] = float(value)
+    assert len(table) == 9
+    assert abs(sum(table[b, "diffusion"] for b in ("top", "middle", "bottom"))) <= 2.0  # printed to 1 N/m
+    assert table["bottom", "diffusion"] < -100.0 and table["middle", "diffusion"] > 100.0
+    assert table["bottom", "elastic"] > -table["bottom", "diffusion"]
+    integral = [float(re.search(r"sum V sigma_xx (-?\d+)", line).group(1)) for line in (lines[0], lines[-1])]
+    assert abs((integral[1] - integral[0]) - sum(table.values())) <= 0.05 * abs(sum(table.values()))
