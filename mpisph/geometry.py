@@ -31,9 +31,10 @@ def lattice_layers(length, dp):
 
 def lattice_mismatch(symbol, length, dp):
     """A one-line warning when the side ``symbol`` (``length`` long) is not a whole number of
-    spacings dp, so that its lattice fill falls short of it by up to dp; else None."""
+    spacings dp, so that its lattice fill falls short of it by up to dp; else None. A fill short
+    by less than 1 % of dp (a dp typed to four digits) is not warned."""
     n = lattice_layers(length, dp)
-    if abs(length / dp - n) <= 1e-6:
+    if length / dp - n < 0.01:
         return None
     return (f"{symbol} = {length:.4g} m is {length / dp:.4g} dp: the lattice fills {n} layers, {n * dp:.4g} m; "
             f"choose dp = {symbol} / n for a whole number n")

@@ -100,6 +100,7 @@ def test_implicit_kick_that_does_not_converge_stops_the_run_with_one_line(tmp_pa
 @pytest.mark.parametrize("case, dp, warned", [
     ("lube_collapse_3d", 0.0972 / 10, ["H_0"]),  # a = 0.55: H_0 / dp = 5.5, the fill has 5 layers
     ("lube_collapse_3d", 0.0972 / 20, []),  # 11 layers
+    ("lube_collapse_3d", 0.003341, []),  # 16.001 layers: the fill short by 0.1 % of dp
     ("lube_collapse_2d", 0.0972 / 30, []),  # a = 0.9: 27 layers, 30 columns
     ("lube_collapse_2d", 0.005, ["H_0", "L_0"]),
 ])
