@@ -118,3 +118,26 @@ def test_a_column_that_is_not_whole_layers_is_warned_and_starts_hydrostatic(case
     top = x[:, -1] == x[:, -1].max()
     rho0, g = built.material.rho0, 9.81
     np.testing.assert_allclose(column.pressure(x)[top], rho0 * g * 0.5 * dp, rtol=1e-12)
+
+
+def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
+    """scripts/collapse_deposit.py on the coarse planar column at 0.1 s (its foot out by about 1.5 dp):
+    14 layers of 6 mm fill H_0 = 0.0875 m; the column's top has sunk by less than a tenth (by half a
+    layer: the open gap of issue 14 in which the top sinks where Lube's stays); the surface at 0.5 L_0,
+    inside the failing wedge, has sunk by about a layer and nothing stands at 1.25 L_0; the runout
+    ratio is validate.py's."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).parent.parent / "scripts" / "collapse_deposit.py"
+    spec = importlib.util.spec_from_file_location("collapse_deposit", path)
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    d = script.deposit(planar["implicit"])
+    assert not d["radial"] and d["layers"] == 14 and d["resolution"] == pytest.approx(0.0972 / 0.006)
+    assert 0.9 < d["centre"] <= 1.0
+    fill = 14 * 0.006 / 0.0972
+    assert fill - 0.12 < d["surface"][0] <= fill and d["surface"][3] == 0.0
+    last = read_frame(list_frames(planar["implicit"])[-1])
+    assert d["ratio"] == pytest.approx((measure.runout(last, 0.006) - 0.0972) / 0.0972, abs=1e-12)
+    assert 0.0 < d["ratio"] < 0.2

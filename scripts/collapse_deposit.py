@@ -1,0 +1,61 @@
+"""The final deposit of a mu(I) column collapse against Lube's laws.
+
+    .venv/bin/python scripts/collapse_deposit.py RUN [RUN ...]
+
+For each run of ``lube_collapse_3d`` (the cylinder) or ``lube_collapse_2d``, from its first and last
+frames: r_0 / dp and the layers the column was filled with, the runout ratio (r_inf - r_0) / r_0 as
+scripts/validate.py measures it (measure.radial_runout, measure.runout) beside Lube's law
+(references.axisymmetric_runout, planar_runout), the height of the deposit's centre (its top grain
+within 0.3 r_0 of the axis or the back wall, plus dp / 2) over the column's, which Lube et al. found
+undisturbed below a = 0.74 (axisymmetric) and 1.15 (planar), and the deposit's surface height over
+r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0.
+"""
+
+import argparse
+
+import numpy as np
+
+from mpisph import measure, references
+from mpisph.io.frames import list_frames, read_frame
+
+STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
+
+
+def deposit(run):
+    """The figures of the module docstring for one run, as a dict."""
+    frames = list_frames(run)
+    first, last = read_frame(frames[0]), read_frame(frames[-1])
+    p = last["params"]
+    dp, a = float(p["dp"]), float(p["a"])
+    radial = p["case"] == "lube_collapse_3d"
+    length = float(p["r_0"] if radial else p["L_0"])
+    x = last["x"]
+    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    height = x[:, -1]
+    top0 = first["x"][:, -1].max() + 0.5 * dp
+    extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
+    law = references.axisymmetric_runout(a) if radial else references.planar_runout(a)
+    surface = []
+    for station in STATIONS:
+        near = np.abs(distance - station * length) < dp
+        surface.append((height[near].max() + 0.5 * dp) / length if near.any() else 0.0)
+    return {"a": a, "radial": radial, "resolution": length / dp, "layers": int(round(top0 / dp)),
+            "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
+            "centre": (height[distance < 0.3 * length].max() + 0.5 * dp) / top0, "surface": surface}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("runs", nargs="+")
+    for run in ap.parse_args().runs:
+        d = deposit(run)
+        symbol = "r_0" if d["radial"] else "L_0"
+        print(f"{run}: {'axisymmetric' if d['radial'] else 'planar'} a = {d['a']:g}, {symbol} / dp = {d['resolution']:.1f} "
+              f"({d['layers']} layers), t = {d['t']:.3g} s: runout ratio {d['ratio']:.3f} against Lube's "
+              f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
+              f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "
+              + " ".join(f"{s:.3f}" for s in d["surface"]))
+
+
+if __name__ == "__main__":
+    main()
