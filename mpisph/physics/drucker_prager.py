@@ -111,9 +111,9 @@ def stress_diffusion(n, start, nbr, xc, stress, mass, rho, kind, rho0, g, k0, c0
 def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
     """out_i[c] = L_i sum_j V_j (sigma_j - sigma_i)[c] grad_i W_ij over the material neighbours, with
     L_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1 over the same (regularised as B): exact on a linear
-    stress field; zero for walls. The sums of A run in scalars, those of S in a 6 x 3 scratch (its
-    third column unused in 2D); each term is formed as in A[a, b] -= f d_a d_b, so that A is the
-    same to the bit as when it was summed in a loop over a and b."""
+    stress field; zero for walls. The nine sums of A (A[a, b] -= f d_a d_b, each formed in that
+    order, not symmetrised) run in scalars, those of S in a 6 x 3 scratch (its third column unused
+    in 2D)."""
     dim = xc.shape[1]
     A = np.empty((dim, dim))
     L = np.empty((dim, dim))
