@@ -84,3 +84,12 @@ def test_a_body_given_by_a_function_of_position_and_probes_in_a_lattice():
     assert np.allclose(stress[:, 2, 2], -case.material.rho0 * 9.8 * (2.0 - x[:, 2]))  # the top at z = 2 m
     assert np.array_equal(soil.x.position(index[3]), x[3])
     assert case._initial_position(int(index[3])).tolist() == x[3].tolist()
+
+
+def test_a_tank_side_that_is_not_whole_spacings_is_warned():
+    """cube_failure_3d's 5 m floor at dp = 0.08 m is 62.5 spacings: the tank's wall lattice puts a layer
+    on its + sides (normals undefined), which the run's warnings say for x and y; at 0.25 m it is 20."""
+    module = load_case_module("cube_failure_3d")
+    odd = build_case(module, resolve_params(module, {"dp": "0.08"}))
+    assert [w.split(" =")[0] for w in odd.warnings] == ["the tank's x side", "the tank's y side"]
+    assert build_case(module, resolve_params(module, {"dp": "0.25"})).warnings == []
