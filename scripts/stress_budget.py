@@ -22,7 +22,7 @@ import sys
 import numpy as np
 
 from mpisph.measure import thrust_ratio
-from mpisph.particles import is_wall
+from mpisph.particles import WALL, WALL_SLIP
 from mpisph.physics import drucker_prager as dp_module
 
 BANDS = ("top", "middle", "bottom")
@@ -30,56 +30,52 @@ PARTS = ("diffusion", "elastic", "plastic")
 
 
 class Budget:
-    """Accumulates the split of each grain's sigma_xx change (module docstring), keyed by global id."""
+    """Accumulates the split of each grain's sigma_xx change (module docstring); per grain in arrays
+    indexed by global id."""
 
     def __init__(self, every):
         self.every, self.t, self.next_report = every, 0.0, 0.0
         self.bands = {(b, p): 0.0 for b in BANDS for p in PARTS}
-        self.grain = {p: {} for p in PARTS[:2]}
-        self.position = {}
+        self.grain = {p: np.zeros(0) for p in PARTS[:2]}
+        self.position = np.zeros((0, 2))
+        self.seen = np.zeros(0, bool)
 
     def record(self, scheme, ctx, dt, update):
         pa, m = ctx.particles, scheme.material
         n = pa.n_owned
-        before = pa.stress.copy()
-        diffusion = self._diffusion(scheme, ctx, n)
+        before = pa.stress[:n].copy()
+        diffusion = scheme.diffusion_rate(ctx)
+        diffusion = diffusion.copy() if len(diffusion) else np.zeros((n, 6))  # the update reuses its scratch
         elastic = pa.stress.copy()
         dp_module.drucker_prager_update(n, *scheme.gradient_args(ctx), dp_module.NO_DIFFUSION, m.K, m.G, 0.0, 0.0,
                                         np.inf, dt, elastic, pa.plastic_strain.copy())
         update(ctx, dt)
-        grains = np.array([not is_wall(k) for k in pa.kind[:n]])
+        grains = ~np.isin(pa.kind[:n], (WALL, WALL_SLIP))
         volume = pa.mass[:n] / pa.rho[:n]
-        parts = {"diffusion": dt * diffusion[:n, 0], "elastic": elastic[:n, 0] - before[:n, 0]}
-        parts["plastic"] = pa.stress[:n, 0] - before[:n, 0] - parts["diffusion"] - parts["elastic"]
+        parts = {"diffusion": dt * diffusion[:, 0], "elastic": elastic[:n, 0] - before[:, 0]}
+        parts["plastic"] = pa.stress[:n, 0] - before[:, 0] - parts["diffusion"] - parts["elastic"]
         self.dp = float(np.median(volume[grains])) ** (1.0 / pa.x.shape[1])  # the spacing, from the volumes
         for band, mask in self._bands(pa.x[:n], grains, self.dp).items():
             for part, change in parts.items():
                 self.bands[band, part] += float(np.sum(volume[mask] * change[mask]))
-        for gid, x, d, e in zip(pa.gid[:n][grains], pa.x[:n][grains], parts["diffusion"][grains],
-                                parts["elastic"][grains]):
-            self.grain["diffusion"][gid] = self.grain["diffusion"].get(gid, 0.0) + d
-            self.grain["elastic"][gid] = self.grain["elastic"].get(gid, 0.0) + e
-            self.position[gid] = x
+        self._per_grain(pa.gid[:n][grains], pa.x[:n][grains], {p: parts[p][grains] for p in self.grain})
         self.t += dt
         if self.t >= self.next_report:
             self.next_report += self.every
             self._report(pa, n, grains, volume)
 
-    @staticmethod
-    def _diffusion(scheme, ctx, n):
-        """The scheme's diffusion rate D (n x 6) from the stress before the update."""
-        pa, m = ctx.particles, scheme.material
-        rate = np.zeros((n, 6))
-        if scheme.diffusion == "geostatic":
-            dp_module.stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0,
-                                       scheme.g, m.k0, m.c0, ctx.kernel.params, rate)
-        elif scheme.diffusion == "linear":
-            dp_module.stress_gradient(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind,
-                                      ctx.kernel.params, pa.stress_gradient)
-            ctx.refresh(["stress_gradient"])
-            dp_module.linear_stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.stress_gradient, pa.mass,
-                                              pa.rho, pa.kind, m.c0, ctx.kernel.params, rate)
-        return rate
+    def _per_grain(self, gid, x, parts):
+        """Add this update's parts of the grains ``gid`` (at ``x``) to their accumulated ones."""
+        size = int(gid.max()) + 1
+        if size > len(self.seen):
+            grow = size - len(self.seen)
+            self.grain = {p: np.concatenate([v, np.zeros(grow)]) for p, v in self.grain.items()}
+            self.position = np.concatenate([self.position, np.zeros((grow, 2))])
+            self.seen = np.concatenate([self.seen, np.zeros(grow, bool)])
+        for p, change in parts.items():
+            self.grain[p][gid] += change
+        self.position[gid] = x
+        self.seen[gid] = True
 
     @staticmethod
     def _bands(x, grains, dp):
@@ -98,14 +94,14 @@ class Budget:
 
     def rows(self, count):
         """Per row of grains (lowest and highest ``count``), each grain's accumulated parts, left to right."""
-        by_row = {}
-        for gid, x in self.position.items():
-            by_row.setdefault(int(round(x[-1] / self.dp - 0.5)), []).append((x[0], gid))
-        keys = sorted(by_row)
-        for row in keys[:count] + keys[-count:]:
-            gids = [g for _, g in sorted(by_row[row])]
-            print(f"row {row}: " + " | ".join(
-                f"{p} " + " ".join(f"{self.grain[p][g] / 1e3:7.2f}" for g in gids) for p in PARTS[:2]) + " [kPa]")
+        gid = np.flatnonzero(self.seen)
+        row = np.rint(self.position[gid, 1] / self.dp - 0.5).astype(int)
+        keys = np.unique(row)
+        for r in [*keys[:count], *keys[-count:]]:
+            in_row = gid[row == r]
+            in_row = in_row[np.argsort(self.position[in_row, 0])]
+            print(f"row {r}: " + " | ".join(
+                f"{p} " + " ".join(f"{v / 1e3:7.2f}" for v in self.grain[p][in_row]) for p in PARTS[:2]) + " [kPa]")
 
 
 def main():

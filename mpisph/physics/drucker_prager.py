@@ -317,21 +317,27 @@ class RiemannGranular(SolidScheme):
         pa = ctx.particles
         material_pressure(pa.n_owned, pa.kind, pa.stress, pa.p)
 
-    def update_stress(self, ctx, dt):
+    def diffusion_rate(self, ctx):
+        """The stress diffusion's rate of the owned particles (n x 6, packed; a workspace scratch
+        valid until the next update), or NO_DIFFUSION for ``none``."""
         pa, m = ctx.particles, self.material
         n = pa.n_owned
         if self.diffusion == "none":
-            diffusion = NO_DIFFUSION
-        else:
-            diffusion, = ctx.workspace.scratch(((n, 6), np.float64))  # for this update only
+            return NO_DIFFUSION
+        diffusion, = ctx.workspace.scratch(((n, 6), np.float64))
         if self.diffusion == "linear":
             stress_gradient(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, ctx.kernel.params,
                             pa.stress_gradient)
             ctx.refresh(["stress_gradient"])
             linear_stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.stress_gradient, pa.mass, pa.rho,
                                     pa.kind, m.c0, ctx.kernel.params, diffusion)
-        elif self.diffusion == "geostatic":
+        else:
             stress_diffusion(n, ctx.start, ctx.nbr, ctx.xc, pa.stress, pa.mass, pa.rho, pa.kind, m.rho0, self.g,
                              m.k0, m.c0, ctx.kernel.params, diffusion)
-        drucker_prager_update(n, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi, m.k_c,
-                              dt, pa.stress, pa.plastic_strain)
+        return diffusion
+
+    def update_stress(self, ctx, dt):
+        pa, m = ctx.particles, self.material
+        diffusion = self.diffusion_rate(ctx)  # first: the linear form refreshes the ghosts' gradients
+        drucker_prager_update(pa.n_owned, *self.gradient_args(ctx), diffusion, m.K, m.G, m.alpha_phi, m.alpha_psi,
+                              m.k_c, dt, pa.stress, pa.plastic_strain)
