@@ -2,7 +2,6 @@
 are the ones scripts/make_flume_stl.py writes, the soil sits on the chute's lattice, no two
 particles crowd, and a small run on 8 ranks (oversubscribed) ends with the same bits as on 1."""
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -14,15 +13,13 @@ from mpisph.io.frames import list_frames, read_frame
 from mpisph.meshes import read_surface
 from mpisph.neighbours import neighbour_lists
 from mpirun import mpisph
+from repo_script import load_script
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def make_flume_stl():
-    spec = importlib.util.spec_from_file_location("make_flume_stl", ROOT / "scripts" / "make_flume_stl.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("make_flume_stl")
 
 
 def flume(**overrides):
@@ -119,9 +116,7 @@ def test_the_deposit_stress_script_on_a_banked_block():
     stress with sigma_xx = 0.6 sigma_zz: the section carries 0.6 gamma H^2 / 2 per metre of width,
     the medians are the coefficients, the top is the block's; the classical forces are the
     references' for that top."""
-    spec = importlib.util.spec_from_file_location("deposit_stress", ROOT / "scripts" / "deposit_stress.py")
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+    script = load_script("deposit_stress")
     face, height, ys = script.barrier_box(ROOT / "cases" / "flume")
     assert (face, height, ys) == (0.6, 0.8, (0.0, 1.0))
     dp, top, gamma = 0.02, 0.9, 1850.0 * 9.8

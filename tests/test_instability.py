@@ -1,13 +1,12 @@
 """The tensile-instability measure sees clusters and inner voids, and nothing on a lattice."""
 
-import importlib.util
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from mpisph.instability import tensile_instability
 from mpisph.launch import mpirun_mpisph
+from repo_script import load_script
 
 
 def lattice_frame(n=30, dp=0.01, remove=None, squeeze=()):
@@ -46,9 +45,7 @@ def test_close_pairs_are_clusters():
 
 
 def test_the_clustered_script_finds_the_same_pairs():
-    spec = importlib.util.spec_from_file_location("clustered", Path(__file__).parent.parent / "scripts" / "clustered.py")
-    clustered = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(clustered)
+    clustered = load_script("clustered")
     frame = lattice_frame(squeeze=[100, 200, 300])
     dp, i, j = clustered.clustered_pairs(frame)
     assert dp == pytest.approx(0.01)

@@ -13,6 +13,7 @@ from mpisph import measure
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpirun import mpisph
+from repo_script import load_script
 
 COARSE = ["--set", "dp=0.006", "--t-end", "0.1", "--output-interval", "0.1", "--set", "diagnostics_every=10"]
 
@@ -126,14 +127,7 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     layer: the open gap of issue 14 in which the top sinks where Lube's stays); the surface at 0.5 L_0,
     inside the failing wedge, has sunk by about a layer and nothing stands at 1.25 L_0; the runout
     ratio is validate.py's."""
-    import importlib.util
-    from pathlib import Path
-
-    path = Path(__file__).parent.parent / "scripts" / "collapse_deposit.py"
-    spec = importlib.util.spec_from_file_location("collapse_deposit", path)
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
-    d = script.deposit(planar["implicit"])
+    d = load_script("collapse_deposit").deposit(planar["implicit"])
     assert not d["radial"] and d["layers"] == 14 and d["resolution"] == pytest.approx(0.0972 / 0.006)
     assert 0.9 < d["centre"] <= 1.0
     fill = 14 * 0.006 / 0.0972

@@ -2,11 +2,12 @@
 and committed solver code (mpisph/ and cases/), so a long validation can be resumed without
 mixing in runs of other code."""
 
-import importlib.util
 import subprocess
 from pathlib import Path
 
 import pytest
+
+from repo_script import load_script
 
 ROOT = Path(__file__).resolve().parent.parent
 BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"]
@@ -14,9 +15,7 @@ BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"
 
 @pytest.fixture
 def validate(tmp_path, monkeypatch):
-    spec = importlib.util.spec_from_file_location("validate", ROOT / "scripts" / "validate.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = load_script("validate")
     monkeypatch.setattr(module, "RUNS", tmp_path)
     return module
 
