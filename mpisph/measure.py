@@ -127,6 +127,16 @@ def front_position(frame, dp, radial=False, sectors=16):
     return float(farthest[np.isfinite(farthest)].mean())
 
 
+def edge_rest_ratio(before, last, t, front, dp, radial=False):
+    """How far a collapse's deposit is from rest: the speed of its edge (``front_position``) from
+    the frame ``before`` to the frame ``last``, over the peak speed of its front ``front`` (the
+    farthest grain, diagnostics.csv) against time ``t``. 004_ Sec. 5.2 finds its deposits' fronts
+    at least three orders of magnitude slower than at their peak."""
+    edge = [front_position(f, dp, radial=radial) for f in (before, last)]
+    speed = abs(edge[1] - edge[0]) / (last["t"] - before["t"])
+    return float(speed / np.max(np.diff(front) / np.diff(t)))
+
+
 def deposit_height(frame, dp, x_max):
     """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x < x_max."""
     x = frame["x"]

@@ -753,22 +753,19 @@ REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of m
 
 def _collapse(case, a, length, dp, ranks, radial, variant=()):
     """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to 6 sqrt(H_0/g)
-    (at least 0.6 s): its diagnostics, last frame, command, runout ratio, and the speed of the
-    deposit's edge (measure.front_position) between the last two frames over the peak speed of the
-    front (the farthest grain, diagnostics.csv)."""
+    (at least 0.6 s): its diagnostics, last frame, command, runout ratio, and how far from rest it
+    is between its last two frames (measure.edge_rest_ratio)."""
     H0 = a * length
     t_end = max(0.6, 6.0 * np.sqrt(H0 / 9.81))
-    settings = [f"a={a}", f"dp={dp:.4g}", *variant]
+    settings = [f"a={a}", f"dp={dp:.12g}", *variant]
     frames, diag, shown = run(f"{case}_" + "_".join(s.replace("=", "") for s in settings), case,
                               ["--set", *settings, "--t-end", f"{t_end:.3g}", "--output-interval", f"{t_end / 20:.3g}"],
                               ranks)
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
-    edge = [measure.front_position(f, dp, radial=radial) for f in frames[-2:]]
-    final = abs(edge[1] - edge[0]) / (frames[-1]["t"] - frames[-2]["t"])
-    peak = np.max(np.diff(diag["front"]) / np.diff(diag["t"]))
+    rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
     return {"a": a, "H0": H0, "diag": diag, "last": last, "cmd": shown, "ratio": (extent - length) / length,
-            "rest": final / peak, "t_end": last["t"]}
+            "rest": rest, "t_end": last["t"]}
 
 
 def _front_panel(ax, runs, length, symbol):

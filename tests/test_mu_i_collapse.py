@@ -56,6 +56,25 @@ def test_front_is_the_farthest_grain(planar):
     assert measure.runout(last, 0.006) - 0.006 <= measure.front_position(last, 0.006) <= last["x"][:, 0].max()
 
 
+def test_rest_is_the_edge_speed_over_the_peak_front_speed():
+    """A deposit of 10 x 3 grains (dp = 1 cm, 9 mm apart along x, so that no grain sits on the edge
+    of a dp-wide bin) whose last column moves 2 mm in 0.1 s, with a front that peaked at 0.4 m/s:
+    0.02 / 0.4 = 0.05, planar and, the same block turned about the axis, radial (its edge taken per
+    azimuthal sector)."""
+    dp = 0.01
+    i, k = np.meshgrid(np.arange(10), np.arange(3), indexing="ij")
+    x = np.stack([0.005 + 0.009 * i, (k + 0.5) * dp], -1).reshape(-1, 2)
+    moved = x.copy()
+    moved[moved[:, 0] > 0.08, 0] += 0.002
+    t, front = np.array([0.0, 0.1, 0.2, 0.3]), np.array([0.0, 0.01, 0.05, 0.06])
+    before, last = {"x": x, "t": 0.2}, {"x": moved, "t": 0.3}
+    assert measure.edge_rest_ratio(before, last, t, front, dp) == pytest.approx(0.05, rel=1e-12)
+    angle = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
+    turn = lambda p: np.concatenate([np.stack([p[:, 0] * np.cos(a), p[:, 0] * np.sin(a), p[:, 1]], -1) for a in angle])
+    ratio = measure.edge_rest_ratio({"x": turn(x), "t": 0.2}, {"x": turn(moved), "t": 0.3}, t, front, dp, radial=True)
+    assert ratio == pytest.approx(0.05, rel=1e-9)
+
+
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
     r = mpisph(["lube_collapse_3d", "--set", "dp=0.02", "--t-end", "0.1", "--output-interval", "0.1", "--out",
                 tmp_path, "--quiet"], ranks=1, timeout=600)

@@ -27,6 +27,9 @@ CASES = {
     # component's gradient from ghosts)
     "column_collapse_2d geostatic_diffusion": (["--set", "dp=0.01", "stress_diffusion=geostatic", "--t-end", "0.04",
                                                 "--output-interval", "0.02"], 0.6),
+    # no stress diffusion: the stress update without the diffusion's pair sums
+    "column_collapse_2d no_diffusion": (["--set", "dp=0.01", "stress_diffusion=none", "--t-end", "0.04",
+                                         "--output-interval", "0.02"], 0.6),
     # TVF: the shift on inner particles only (a key's first word is the case)
     "column_collapse_2d tvf": (["--set", "dp=0.01", "stabiliser=tvf", "--t-end", "0.04", "--output-interval",
                                 "0.02"], 0.6),
