@@ -3,7 +3,8 @@
     .venv/bin/python scripts/clustered.py FRAME [FRAME ...]
 
 For each frame: how many moving particles are clustered, and how they split by free-surface class
-(the frame's ``surface`` field: inner, near-surface, outermost, splashed), by the sign of their pressure
+(the frame's ``surface`` field: inner, near-surface, outermost, splashed), how many of the free-surface
+ones UTVF leaves unshifted (000_ Eq. 37: div r < 0.6 d), by the sign of their pressure
 (p = -tr(sigma)/3 for solids: tension is p < 0), by whether their nearest partner is a wall
 particle and, in 3D, by whether 3D UTVF with utvf_edge_neighbours=kept would leave them unshifted; the median distance to that partner and the median height of the clustered particles. This
 is the first thing to know when a clustering figure misses: tension inside the body, a free surface,
@@ -83,6 +84,10 @@ def describe(path):
         p = frame["p"][i]
         print(f"  in tension (p < 0): {int(np.sum(p < 0))}, median p {np.median(p):.4g} Pa")
     print(f"  nearest partner a wall particle: {int(np.sum(frame['kind'][j] != MOVING))}")
+    if "div_r" in frame and "surface" in frame:
+        free = np.isin(frame["surface"][i], (surface.NEAR_SURFACE, surface.SURFACE))
+        print(f"  free-surface particles that Eq. 37 leaves unshifted (div r < 0.6 d): "
+              f"{int(np.sum(free & ~shifted_on_the_surface(frame)[i]))} of {int(free.sum())}")
     if dim == 3 and "div_r" in frame:
         print(f"  free-surface particles beside an edge (utvf_edge_neighbours=kept leaves them unshifted): "
               f"{int(np.sum(beside_an_edge(frame)[i]))}")
