@@ -127,6 +127,16 @@ def front_position(frame, dp, radial=False, sectors=16):
     return float(farthest[np.isfinite(farthest)].mean())
 
 
+def beyond_the_edge(frame, dp, radial=False, sectors=16):
+    """Mask of the grains beyond the connected deposit's edge (``runout``, or per azimuthal sector
+    ``radial_runout``'s): those that a gap of a bin or more separates from the deposit."""
+    x = frame["x"]
+    if not radial:
+        return x[:, 0] >= runout(frame, dp)
+    r, sector = _polar(x, sectors)
+    return r >= _sector_runouts(r, sector, dp, sectors)[sector]
+
+
 def edge_rest_ratio(before, last, t, front, dp, radial=False):
     """How far a collapse's deposit is from rest: the speed of its edge (``front_position``) from
     the frame ``before`` to the frame ``last``, over the peak speed of its front ``front`` (the

@@ -8,8 +8,10 @@ scripts/validate.py measures it (measure.radial_runout, measure.runout) beside L
 (references.axisymmetric_runout, planar_runout), the height of the deposit's centre (its top grain
 within 0.3 r_0 of the axis or the back wall, plus dp / 2) over the column's, which Lube et al. found
 undisturbed below a = 0.74 (axisymmetric) and 1.15 (planar), the deposit's surface height over
-r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0, and the speed of the deposit's edge between the last two
-frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest).
+r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0, the speed of the deposit's edge between the last two
+frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), and the grains
+beyond the connected deposit's edge (measure.beyond_the_edge): how many, and how far the farthest
+lies beyond r_0, over r_0.
 """
 
 import argparse
@@ -38,6 +40,7 @@ def deposit(run):
     height = x[:, -1]
     top0 = first["x"][:, -1].max() + 0.5 * dp
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
+    beyond = measure.beyond_the_edge(last, dp, radial=radial)
     law = references.axisymmetric_runout(a) if radial else references.planar_runout(a)
     surface = []
     for station in STATIONS:
@@ -46,7 +49,8 @@ def deposit(run):
     return {"a": a, "radial": radial, "resolution": length / dp, "layers": int(round(top0 / dp)),
             "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
             "centre": (height[distance < 0.3 * length].max() + 0.5 * dp) / top0, "surface": surface,
-            "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial)}
+            "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
+            "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length}
 
 
 def main():
@@ -59,7 +63,8 @@ def main():
               f"({d['layers']} layers), t = {d['t']:.3g} s: runout ratio {d['ratio']:.3f} against Lube's "
               f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
               f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "
-              + " ".join(f"{s:.3f}" for s in d["surface"]) + f"; edge speed / peak front speed {d['rest']:.1e}")
+              + " ".join(f"{s:.3f}" for s in d["surface"]) + f"; edge speed / peak front speed {d['rest']:.1e}; "
+              f"{d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}")
 
 
 if __name__ == "__main__":

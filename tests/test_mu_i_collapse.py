@@ -75,6 +75,20 @@ def test_rest_is_the_edge_speed_over_the_peak_front_speed():
     assert ratio == pytest.approx(0.05, rel=1e-9)
 
 
+def test_grains_beyond_a_gap_are_not_the_deposit():
+    """The same 10 x 3 block with two grains 2.5 and 3 dp beyond its last column: the runout ends at
+    the block and only those two are beyond it; turned about the axis, two per turned copy."""
+    dp = 0.01
+    i, k = np.meshgrid(np.arange(10), np.arange(3), indexing="ij")
+    x = np.stack([0.005 + 0.009 * i, (k + 0.5) * dp], -1).reshape(-1, 2)
+    x = np.concatenate([x, [[0.086 + 0.025, 0.005], [0.086 + 0.03, 0.005]]])
+    beyond = measure.beyond_the_edge({"x": x}, dp)
+    assert np.flatnonzero(beyond).tolist() == [30, 31] and measure.runout({"x": x}, dp) == pytest.approx(0.095)
+    angle = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
+    turned = np.concatenate([np.stack([x[:, 0] * np.cos(a), x[:, 0] * np.sin(a), x[:, 1]], -1) for a in angle])
+    assert np.sum(measure.beyond_the_edge({"x": turned}, dp, radial=True)) == 2 * len(angle)
+
+
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
     r = mpisph(["lube_collapse_3d", "--set", "dp=0.02", "--t-end", "0.1", "--output-interval", "0.1", "--out",
                 tmp_path, "--quiet"], ranks=1, timeout=600)
@@ -154,3 +168,4 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     last = read_frame(list_frames(planar["implicit"])[-1])
     assert d["ratio"] == pytest.approx((measure.runout(last, 0.006) - 0.0972) / 0.0972, abs=1e-12)
     assert 0.0 < d["ratio"] < 0.2
+    assert d["beyond"] == 0 and d["ratio"] - 0.006 / 0.0972 <= d["farthest"] <= d["ratio"] + 0.5 * 0.006 / 0.0972
