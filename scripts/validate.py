@@ -860,8 +860,8 @@ STUDY_3D = (0.55, (8, 11, 14))  # the resolution study: a, and the coarser colum
 
 def lube_collapse_3d(ranks):
     """Axisymmetric mu(I) collapses in 3D (Lube et al. 2004) for 004_'s a = 0.55-2.75 (H_0 / dp of
-    LAYERS_3D), a resolution study of a = 0.55 (H_0 / dp = 8-16) with the runout extrapolated to
-    dp = 0 on a line in dp, and the planar collapse run by the 3D code as a slab beside the 2D run:
+    LAYERS_3D), a resolution study of a = 0.55 (H_0 / dp = 8-16) by the connected deposit's edge and
+    by its grains' front, and the planar collapse run by the 3D code as a slab beside the 2D run:
     runout against Eq. 58, rest."""
     r0 = references.LUBE_R0
     runs = [_collapse("lube_collapse_3d", a, r0, a * r0 / n, ranks, radial=True) for a, n in LAYERS_3D.items()]
@@ -872,10 +872,11 @@ def lube_collapse_3d(ranks):
     planar = _collapse("lube_collapse_2d", 0.5, r0, r0 / 20, ranks, radial=False)
     fig, ax = plt.subplots(1, 3, figsize=(16, 4.5))
     _front_panel(ax[0], runs, r0, "r")
+    finest = ", ".join(f"{n / a:.3g}" for a, n in LAYERS_3D.items())  # r_0 / dp of each column
     aa = np.linspace(0.3, 3.2, 60)
     ax[1].plot(aa, references.axisymmetric_runout(aa), "k--", label="Lube et al. 2004 (Eq. 58)")
     ax[1].plot([r["a"] for r in runs], [r["ratio"] for r in runs], "o",
-               label="mpisph, r_0 / dp = " + ", ".join(f"{n / a:.3g}" for a, n in LAYERS_3D.items()))
+               label=f"mpisph, r_0 / dp = {finest}")
     ax[1].set_xlabel("a = H_0 / r_0")
     ax[1].set_ylabel("(r_inf - r_0) / r_0")
     ax[1].legend(fontsize=7)
@@ -909,13 +910,12 @@ def lube_collapse_3d(ranks):
               f"{slab['ratio']:.2f}; {planar['ratio']:.2f}", "0.60 (1.2 a)",
               f"{100 * (slab['ratio'] / planar['ratio'] - 1):+.0f}% (3D against 2D)", "-")]
     image = save(fig, "lube_collapse_3d.png")
-    finest = [f"{n / a:.3g}" for a, n in LAYERS_3D.items()]
     note = ("A cylinder of radius r_0 = 9.72 cm on a round no-slip floor, the cases' defaults (implicit "
             "viscous kick, secant pair viscosity, m_0 = 1.4 s), to 6 sqrt(H_0 / g); runout: the connected "
             "deposit's edge averaged over 16 azimuthal sectors (measure.radial_runout). Each column is a "
             "whole number of layers high (the lattice fills floor(H_0 / dp) layers; the case warns "
             f"otherwise): {', '.join(str(n) for n in LAYERS_3D.values())} layers, r_0 / dp = "
-            f"{', '.join(finest)} for a = {', '.join(f'{a:g}' for a in LAYERS_3D)} (004_ Table 3 ran its 2D "
+            f"{finest} for a = {', '.join(f'{a:g}' for a in LAYERS_3D)} (004_ Table 3 ran its 2D "
             "columns at r_0 / dp = 44, 32, 30 and 20; a = 2.75 at 55 layers, 004_'s spacing, would take about "
             "twice the 18 min on 2 ranks that 44 layers take here). The runout is not converged at these "
             f"spacings. In the study of a = {a_study:g} the last refinement moves it by {100 * change:+.1f}% "
@@ -924,7 +924,8 @@ def lube_collapse_3d(ranks):
             "r_0 / dp = 14.5): that makes it fall from the coarsest column to the next, where the grains' "
             "front within the outermost bin grows at every refinement. So the runouts of the other rows, "
             "each at a single spacing, are likely short of what this model gives converged (the planar runs "
-            "grow likewise, by 11-18 % from L_0 / dp = 20 to 40: docs/COLLAPSES.md). The slab row runs lube_collapse_2d's planar column with the 3D code "
+            "grow likewise, by 11-18 % from L_0 / dp = 20 to 40: docs/COLLAPSES.md). The slab row runs "
+            "lube_collapse_2d's planar column with the 3D code "
             "(`--set shape=slab`, 8 particles across, periodic, m_0 = 1.4 s as the 3D default; the 2D run "
             "has its own default, 1.2 s) beside the 2D run: one empty bin near the slab's tip cuts two bins "
             "off its connected deposit, whose farthest grain lies at 0.53 L_0 beyond the column, as far as "

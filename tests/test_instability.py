@@ -1,6 +1,5 @@
 """The tensile-instability measure sees clusters and inner voids, and nothing on a lattice."""
 
-
 import numpy as np
 import pytest
 

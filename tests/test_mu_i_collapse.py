@@ -56,22 +56,32 @@ def test_front_is_the_farthest_grain(planar):
     assert measure.runout(last, 0.006) - 0.006 <= measure.front_position(last, 0.006) <= last["x"][:, 0].max()
 
 
-def test_rest_is_the_edge_speed_over_the_peak_front_speed():
-    """A deposit of 10 x 3 grains (dp = 1 cm, 9 mm apart along x, so that no grain sits on the edge
-    of a dp-wide bin) whose last column moves 2 mm in 0.1 s, with a front that peaked at 0.4 m/s:
-    0.02 / 0.4 = 0.05, planar and, the same block turned about the axis, radial (its edge taken per
-    azimuthal sector)."""
-    dp = 0.01
+def deposit_block(dp):
+    """A deposit of 10 x 3 grains, dp apart across and 0.9 dp along x (so that no grain sits on the
+    edge of a dp-wide bin), its last column at x = 0.086 m for dp = 1 cm."""
     i, k = np.meshgrid(np.arange(10), np.arange(3), indexing="ij")
-    x = np.stack([0.005 + 0.009 * i, (k + 0.5) * dp], -1).reshape(-1, 2)
+    return np.stack([0.5 * dp + 0.9 * dp * i, (k + 0.5) * dp], -1).reshape(-1, 2)
+
+
+def turned(x, copies=64):
+    """The 2D grains ``x`` (distance from the axis, height) turned about the vertical axis, ``copies`` times."""
+    angle = np.linspace(0.0, 2.0 * np.pi, copies, endpoint=False)
+    return np.concatenate([np.stack([x[:, 0] * np.cos(a), x[:, 0] * np.sin(a), x[:, 1]], -1) for a in angle])
+
+
+def test_rest_is_the_edge_speed_over_the_peak_front_speed():
+    """The deposit_block (dp = 1 cm) whose last column moves 2 mm in 0.1 s, with a front that
+    peaked at 0.4 m/s: 0.02 / 0.4 = 0.05, planar and, the same block turned about the axis, radial
+    (its edge taken per azimuthal sector)."""
+    dp = 0.01
+    x = deposit_block(dp)
     moved = x.copy()
     moved[moved[:, 0] > 0.08, 0] += 0.002
     t, front = np.array([0.0, 0.1, 0.2, 0.3]), np.array([0.0, 0.01, 0.05, 0.06])
     before, last = {"x": x, "t": 0.2}, {"x": moved, "t": 0.3}
     assert measure.edge_rest_ratio(before, last, t, front, dp) == pytest.approx(0.05, rel=1e-12)
-    angle = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
-    turn = lambda p: np.concatenate([np.stack([p[:, 0] * np.cos(a), p[:, 0] * np.sin(a), p[:, 1]], -1) for a in angle])
-    ratio = measure.edge_rest_ratio({"x": turn(x), "t": 0.2}, {"x": turn(moved), "t": 0.3}, t, front, dp, radial=True)
+    ratio = measure.edge_rest_ratio({"x": turned(x), "t": 0.2}, {"x": turned(moved), "t": 0.3}, t, front, dp,
+                                    radial=True)
     assert ratio == pytest.approx(0.05, rel=1e-9)
 
 
@@ -79,14 +89,10 @@ def test_grains_beyond_a_gap_are_not_the_deposit():
     """The same 10 x 3 block with two grains 2.5 and 3 dp beyond its last column: the runout ends at
     the block and only those two are beyond it; turned about the axis, two per turned copy."""
     dp = 0.01
-    i, k = np.meshgrid(np.arange(10), np.arange(3), indexing="ij")
-    x = np.stack([0.005 + 0.009 * i, (k + 0.5) * dp], -1).reshape(-1, 2)
-    x = np.concatenate([x, [[0.086 + 0.025, 0.005], [0.086 + 0.03, 0.005]]])
+    x = np.concatenate([deposit_block(dp), [[0.086 + 0.025, 0.005], [0.086 + 0.03, 0.005]]])
     beyond = measure.beyond_the_edge({"x": x}, dp)
     assert np.flatnonzero(beyond).tolist() == [30, 31] and measure.runout({"x": x}, dp) == pytest.approx(0.095)
-    angle = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
-    turned = np.concatenate([np.stack([x[:, 0] * np.cos(a), x[:, 0] * np.sin(a), x[:, 1]], -1) for a in angle])
-    assert np.sum(measure.beyond_the_edge({"x": turned}, dp, radial=True)) == 2 * len(angle)
+    assert np.sum(measure.beyond_the_edge({"x": turned(x)}, dp, radial=True)) == 2 * 64
 
 
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
