@@ -137,6 +137,18 @@ def beyond_the_edge(frame, dp, radial=False, sectors=16):
     return r >= _sector_runouts(r, sector, dp, sectors)[sector]
 
 
+def mass_extent(frame, fraction, radial=False):
+    """The distance along x (``radial``: from the z axis) within which ``fraction`` of the mass of
+    the frame's particles lies: the centre of the particle at which their cumulative mass, in
+    order of distance, reaches it. Unlike the edge of a deposit, it does not follow a sheet of a
+    few grains' thickness that a finer spacing resolves further out."""
+    x = frame["x"]
+    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    order = np.argsort(distance, kind="stable")
+    cumulative = np.cumsum(frame["mass"][order])
+    return float(distance[order][np.searchsorted(cumulative, fraction * cumulative[-1])])
+
+
 def edge_rest_ratio(before, last, t, front, dp, radial=False):
     """How far a collapse's deposit is from rest: the speed of its edge (``front_position``) from
     the frame ``before`` to the frame ``last``, over the peak speed of its front ``front`` (the

@@ -11,7 +11,13 @@ undisturbed below a = 0.74 (axisymmetric) and 1.15 (planar), the deposit's surfa
 r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0, the speed of the deposit's edge between the last two
 frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), and the grains
 beyond the connected deposit's edge (measure.beyond_the_edge): how many, and how far the farthest
-lies beyond r_0, over r_0.
+lies beyond r_0, over r_0, and how far beyond r_0, over r_0, 90, 95 and 99 % of the mass lie
+(measure.mass_extent).
+
+With ``--profile STEP`` it also prints, for all the runs side by side, the deposit's surface height over
+r_0 at every STEP r_0 from STEP to the farthest grain (0 where no grain lies within dp of the station),
+so that runs at different spacings can be compared along the whole deposit; ``--plot PNG`` draws the
+surfaces (the top of each dp-wide bin plus dp / 2) of all the runs in one picture.
 """
 
 import argparse
@@ -24,6 +30,29 @@ from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 
 STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
+FRACTIONS = (0.9, 0.95, 0.99)  # of the mass, for measure.mass_extent
+
+
+def surface_at(frame, dp, radial, length, stations):
+    """The deposit's surface height over ``length`` at each of ``stations`` (distances over
+    ``length`` from the axis or the back wall): the top grain within dp of the station plus dp / 2,
+    0 where there is none."""
+    x = frame["x"]
+    distance = (np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]) / length
+    out = []
+    for station in stations:
+        near = np.abs(distance - station) < dp / length
+        out.append((x[near, -1].max() + 0.5 * dp) / length if near.any() else 0.0)
+    return out
+
+
+def surface_line(frame, dp, radial, length):
+    """The deposit's surface over ``length`` against the distance over ``length`` (bin centres),
+    from measure.surface_profile on (distance from the axis or the back wall, height)."""
+    x = frame["x"]
+    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    centres, top = measure.surface_profile({"x": np.column_stack([distance, x[:, -1]])}, dp)
+    return centres / length, top / length
 
 
 def deposit(run):
@@ -42,30 +71,72 @@ def deposit(run):
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     beyond = measure.beyond_the_edge(last, dp, radial=radial)
     law = references.axisymmetric_runout(a) if radial else references.planar_runout(a)
-    surface = []
-    for station in STATIONS:
-        near = np.abs(distance - station * length) < dp
-        surface.append((height[near].max() + 0.5 * dp) / length if near.any() else 0.0)
+    surface = surface_at(last, dp, radial, length, STATIONS)
     return {"a": a, "radial": radial, "resolution": length / dp, "layers": int(round(top0 / dp)),
             "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
             "centre": (height[distance < 0.3 * length].max() + 0.5 * dp) / top0, "surface": surface,
             "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
-            "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length}
+            "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length,
+            "extents": [(measure.mass_extent(last, q, radial=radial) - length) / length for q in FRACTIONS],
+            "frame": last, "dp": dp, "length": length}
+
+
+def profile_table(deposits, step):
+    """Lines of the surface heights of ``deposits`` (dicts of ``deposit``) side by side, at every
+    ``step`` from ``step`` to the farthest grain of any of them."""
+    end = max(1.0 + d["farthest"] for d in deposits)
+    stations = np.arange(1, int(end / step) + 1) * step
+    columns = [surface_at(d["frame"], d["dp"], d["radial"], d["length"], stations) for d in deposits]
+    lines = ["distance " + " ".join(f"{d['resolution']:>7.1f}" for d in deposits) + "  (surface / length at "
+             "distance / length; columns: the runs' length / dp)"]
+    for k, station in enumerate(stations):
+        lines.append(f"{station:8.2f} " + " ".join(f"{c[k]:7.3f}" for c in columns))
+    return lines
+
+
+def plot_surfaces(deposits, names, png):
+    """The surfaces of ``deposits`` against the distance, both over the column's length, into ``png``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    for d, name in zip(deposits, names):
+        x, top = surface_line(d["frame"], d["dp"], d["radial"], d["length"])
+        ax.step(x, top, where="mid", label=f"{name}: length / dp = {d['resolution']:.0f}")
+    symbol = "r_0" if deposits[0]["radial"] else "L_0"
+    ax.set_xlabel(f"distance / {symbol}")
+    ax.set_ylabel(f"surface / {symbol}")
+    ax.set_aspect("equal")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+")
-    for run in ap.parse_args().runs:
+    ap.add_argument("--profile", type=float, metavar="STEP", help="print the surfaces side by side every STEP")
+    ap.add_argument("--plot", metavar="PNG", help="draw the surfaces of all the runs into PNG")
+    args = ap.parse_args()
+    deposits = []
+    for run in args.runs:
         d = deposit(run)
+        deposits.append(d)
         symbol = "r_0" if d["radial"] else "L_0"
         print(f"{run}: {'axisymmetric' if d['radial'] else 'planar'} a = {d['a']:g}, {symbol} / dp = {d['resolution']:.1f} "
               f"({d['layers']} layers), t = {d['t']:.3g} s: runout ratio {d['ratio']:.3f} against Lube's "
               f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
               f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "
               + " ".join(f"{s:.3f}" for s in d["surface"]) + f"; edge speed / peak front speed {d['rest']:.1e}; "
-              f"{d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}")
-
+              f"{d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}; "
+              + ", ".join(f"{100 * q:g}" for q in FRACTIONS) + " % of the mass within "
+              + " ".join(f"{e:.3f}" for e in d["extents"]))
+    if args.profile:
+        print("\n".join(profile_table(deposits, args.profile)))
+    if args.plot:
+        plot_surfaces(deposits, [Path(run).name for run in args.runs], args.plot)
 
 if __name__ == "__main__":
     main()

@@ -95,6 +95,24 @@ def test_grains_beyond_a_gap_are_not_the_deposit():
     assert np.sum(measure.beyond_the_edge({"x": turned(x)}, dp, radial=True)) == 2 * 64
 
 
+def test_mass_extent_is_where_a_fraction_of_the_mass_lies():
+    """The same block and two thrown grains, all of one mass (32 grains): 85 % of the mass (27.2
+    grains) lies within the block's last column, at x = 0.086 m; 95 % (30.4 grains) reaches the
+    first thrown grain, 2.5 dp beyond it. Grains of twice the mass in the block's first column
+    (35 grains' mass, 85 % of it 29.75) bring the 85 % back to its second-to-last column. Turned
+    about the axis, the same distances from it."""
+    dp = 0.01
+    x = np.concatenate([deposit_block(dp), [[0.086 + 0.025, 0.005], [0.086 + 0.03, 0.005]]])
+    mass = np.ones(len(x))
+    assert measure.mass_extent({"x": x, "mass": mass}, 0.85) == pytest.approx(0.086)
+    assert measure.mass_extent({"x": x, "mass": mass}, 0.95) == pytest.approx(0.111)
+    heavier = np.where(x[:, 0] < dp, 2.0, 1.0)
+    assert measure.mass_extent({"x": x, "mass": heavier}, 0.85) == pytest.approx(0.086 - 0.009)
+    spun = {"x": turned(x), "mass": np.tile(mass, 64)}
+    assert measure.mass_extent(spun, 0.85, radial=True) == pytest.approx(0.086)
+    assert measure.mass_extent(spun, 0.95, radial=True) == pytest.approx(0.111)
+
+
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
     r = mpisph(["lube_collapse_3d", "--set", "dp=0.02", "--t-end", "0.1", "--output-interval", "0.1", "--out",
                 tmp_path, "--quiet"], ranks=1, timeout=600)
@@ -165,7 +183,9 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     14 layers of 6 mm fill H_0 = 0.0875 m; the column's top has sunk by less than a tenth (by half a
     layer: the open gap of issue 14 in which the top sinks where Lube's stays); the surface at 0.5 L_0,
     inside the failing wedge, has sunk by about a layer and nothing stands at 1.25 L_0; the runout
-    ratio is validate.py's."""
+    ratio is validate.py's; 90 % of the mass lies beyond 0.9 L_0, where it stood in the column (the
+    failing wedge has moved out), and within the runout, 99 % short of the farthest grain; the side-by-side profile (--profile 0.25) has the same surface at its stations, which end
+    at the farthest grain."""
     d = load_script("collapse_deposit").deposit(planar["implicit"])
     assert not d["radial"] and d["layers"] == 14 and d["resolution"] == pytest.approx(0.0972 / 0.006)
     assert 0.9 < d["centre"] <= 1.0
@@ -175,3 +195,9 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     assert d["ratio"] == pytest.approx((measure.runout(last, 0.006) - 0.0972) / 0.0972, abs=1e-12)
     assert 0.0 < d["ratio"] < 0.2
     assert d["beyond"] == 0 and d["ratio"] - 0.006 / 0.0972 <= d["farthest"] <= d["ratio"] + 0.5 * 0.006 / 0.0972
+    assert -0.1 < d["extents"][0] < d["ratio"] and d["extents"] == sorted(d["extents"])
+    assert d["extents"][-1] < d["farthest"]
+    table = load_script("collapse_deposit").profile_table([d, d], 0.25)
+    rows = {float(line.split()[0]): [float(v) for v in line.split()[1:]] for line in table[1:]}
+    assert rows[0.5] == [round(d["surface"][0], 3)] * 2 and rows[1.0] == [round(d["surface"][2], 3)] * 2
+    assert list(rows) == [0.25, 0.5, 0.75, 1.0] and d["farthest"] < 0.25  # stations up to the farthest grain
