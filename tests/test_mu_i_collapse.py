@@ -113,6 +113,22 @@ def test_mass_extent_is_where_a_fraction_of_the_mass_lies():
     assert measure.mass_extent(spun, 0.95, radial=True) == pytest.approx(0.111)
 
 
+def test_the_floor_holds_a_sliding_sheet_between_mu_s_and_mu_2(tmp_path):
+    """A sheet of the sand 4 layers deep (case sliding_sheet) released at 1 m/s over the collapses'
+    floor loses half its speed at a mean friction U / (2 g t) between the law's mu_s and mu_2
+    (004_ Eq. 7): the floor's grip on a layer a few particles deep is a friction of the law. A
+    free-slip floor would give 0; a single layer is held harder than mu_2 (docs/COLLAPSES.md)."""
+    r = mpisph(["sliding_sheet", "--set", "H=0.01944", "dp=0.00486", "columns=8", "diagnostics_every=5",
+                "--t-end", "0.1", "--output-interval", "0.1", "--out", tmp_path, "--quiet"], ranks=1, timeout=600)
+    assert r.returncode == 0, r.stderr
+    d = read_diagnostics(tmp_path / "diagnostics.csv")
+    speed = d["momentum_x"] / d["mass"]
+    assert speed[0] == pytest.approx(1.0)
+    half = d["t"][np.argmax(speed < 0.5)]
+    friction = 0.5 / (9.81 * half)
+    assert np.tan(np.radians(30.5)) <= friction <= np.tan(np.radians(51.3))
+
+
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
     r = mpisph(["lube_collapse_3d", "--set", "dp=0.02", "--t-end", "0.1", "--output-interval", "0.1", "--out",
                 tmp_path, "--quiet"], ranks=1, timeout=600)
