@@ -94,7 +94,7 @@ def profile_table(deposits, step):
     return lines
 
 
-def plot_surfaces(deposits, names, png):
+def plot_surfaces(deposits, png):
     """The surfaces of ``deposits`` against the distance, both over the column's length, into ``png``."""
     import matplotlib
 
@@ -102,10 +102,10 @@ def plot_surfaces(deposits, names, png):
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(8, 3.5))
-    for d, name in zip(deposits, names):
-        x, top = surface_line(d["frame"], d["dp"], d["radial"], d["length"])
-        ax.step(x, top, where="mid", label=f"{name}: length / dp = {d['resolution']:.0f}")
     symbol = "r_0" if deposits[0]["radial"] else "L_0"
+    for d in deposits:
+        x, top = surface_line(d["frame"], d["dp"], d["radial"], d["length"])
+        ax.step(x, top, where="mid", label=f"a = {d['a']:g}, {symbol} / dp = {d['resolution']:.0f}")
     ax.set_xlabel(f"distance / {symbol}")
     ax.set_ylabel(f"surface / {symbol}")
     ax.set_aspect("equal")
@@ -136,7 +136,7 @@ def main():
     if args.profile:
         print("\n".join(profile_table(deposits, args.profile)))
     if args.plot:
-        plot_surfaces(deposits, [Path(run).name for run in args.runs], args.plot)
+        plot_surfaces(deposits, args.plot)
 
 if __name__ == "__main__":
     main()
