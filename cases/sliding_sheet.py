@@ -50,4 +50,5 @@ def setup(p):
         walls=[Wall("floor", bed_layers((0.0,), (length,), p.dp, layers), distance=depth)],
         gravity=(0.0, -p.g),
         u_ref=math.sqrt(p.g * p.H_0),
+        density_reinit=p.density_reinit,
     )

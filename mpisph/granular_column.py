@@ -17,7 +17,7 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 
 import math
 
-from .case import Body, Case, Front, MuIGranular, Param, Wall
+from .case import Body, Case, Front, MuIGranular, Param, Wall, density_reinit_param
 from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
@@ -44,6 +44,7 @@ def column_params(a, dp, m_0):
                        "rho_s0 g H_0"),
         "m_0": Param(m_0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
         **mu_i_params("004_ uses none for the collapses", "implicit"),
+        "density_reinit": density_reinit_param("none", why="004_ evolves the density by Eq. 26"),
         "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; "
                                "dual: 001_ Eqs. 9-11", choices=("dual", "single")),
         "diagnostics_every": Param(100, "steps", "steps between rows of diagnostics.csv", positive=True),
@@ -76,6 +77,7 @@ def column_case_settings(p, material, column, H0, front_axes, sides):
         gravity=(0.0,) * (dim - 1) + (-p.g,),
         front=Front((0.0,) * dim, front_axes),
         u_ref=math.sqrt(p.g * H0),
+        density_reinit=p.density_reinit,
         warnings=[w for w in (lattice_mismatch(k, v, p.dp) for k, v in sides.items()) if w],
     )
 

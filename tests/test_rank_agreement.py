@@ -60,6 +60,9 @@ CASES = {
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
     # the implicit viscous kick: conjugate gradients with partition-independent sums
     "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
+    # the mu(I) density by kernel summation near a free surface
+    "lube_collapse_2d reinit": (["--set", "dp=0.005", "density_reinit=free_surface", "--t-end", "0.06",
+                                 "--output-interval", "0.03"], 0.5),
 }
 FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "shear_stress", "plastic_strain", "eta", "rho_s", "knot",
           "displacement_gradient")
