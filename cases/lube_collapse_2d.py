@@ -4,7 +4,8 @@ A column L_0 long and H_0 = a L_0 high stands against a back wall at x = 0 and
 is released at t = 0; it spreads along +x over a no-slip floor. The back wall
 is free-slip by default, which makes the run the right half of a symmetric
 column 2 L_0 wide. The sand and its defaults are granular_column.py's. The
-front (largest x of a grain) is a column of diagnostics.csv; the deposit's
+front (largest x of a grain) and the grains' force on the floor
+(force_floor_x, _y) are columns of diagnostics.csv; the deposit's
 runout L_inf is measure.runout of the last frame, compared with
 references.planar_runout.
 """

@@ -4,7 +4,8 @@ A cylinder of radius r_0 and height H_0 = a r_0 stands on the middle of a
 round no-slip floor and is released at t = 0 (the lifted tube is not
 modelled). The sand and its defaults are granular_column.py's; 004_ Table 3
 (references.LUBE_TABLE_3) lists the paper's 2D runs of these columns. The
-front (largest distance of a grain from the axis) is a column of
+front (largest distance of a grain from the axis) and the grains' force
+on the floor (force_floor_x, _y, _z) are columns of
 diagnostics.csv; the deposit's runout r_inf is measure.radial_runout of the
 last frame, compared with references.axisymmetric_runout.
 

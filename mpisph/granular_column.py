@@ -64,7 +64,8 @@ def sand(p, H0):
 def column_case_settings(p, material, column, H0, front_axes, sides):
     """Case keywords shared by the collapses: the column body (a lattice source) at rest under the
     hydrostatic pressure of its lattice fill, the mu_i scheme with its options (granular_flow.py),
-    the front gauge, the reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
+    the front gauge, the force of the grains on the wall named "floor" (and its moment about the
+    origin) into diagnostics.csv, the reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
     not a whole number of dp, as the fill then changes the column's aspect ratio."""
     top = lattice_layers(H0, p.dp) * p.dp
     dim = len(column.lattice.frame.origin)
@@ -76,6 +77,7 @@ def column_case_settings(p, material, column, H0, front_axes, sides):
         bodies=[Body("column", column, pressure=lambda x: material.rho0 * p.g * (top - x[:, -1]))],
         gravity=(0.0,) * (dim - 1) + (-p.g,),
         front=Front((0.0,) * dim, front_axes),
+        wall_forces={"floor": (0.0,) * dim},
         u_ref=math.sqrt(p.g * H0),
         density_reinit=p.density_reinit,
         warnings=[w for w in (lattice_mismatch(k, v, p.dp) for k, v in sides.items()) if w],

@@ -56,6 +56,19 @@ def test_front_is_the_farthest_grain(planar):
     assert measure.runout(last, 0.006) - 0.006 <= measure.front_position(last, 0.006) <= last["x"][:, 0].max()
 
 
+def test_the_floor_holds_the_column_back(planar):
+    """The grains' force on the floor (diagnostics.csv, wall_forces.py) of the coarse column: none
+    along x while it rests at t = 0, when the floor carries at most its weight; then along +x, the
+    floor holding the spreading grains back, at most mu_2 times the force it carries (no grain's
+    friction exceeds mu_2)."""
+    for step in ("explicit", "implicit"):
+        d = read_diagnostics(planar[step] / "diagnostics.csv")
+        weight = d["mass"][0] * 9.81
+        along, down = d["force_floor_x"], -d["force_floor_y"]
+        assert abs(along[0]) < 1e-9 * weight and 0.0 < down[0] <= weight
+        assert np.all(along[1:] > 0.0) and np.all(along <= np.tan(np.radians(51.3)) * down)
+
+
 def deposit_block(dp):
     """A deposit of 10 x 3 grains, dp apart across and 0.9 dp along x (so that no grain sits on the
     edge of a dp-wide bin), its last column at x = 0.086 m for dp = 1 cm."""
