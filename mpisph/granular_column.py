@@ -65,8 +65,9 @@ def column_case_settings(p, material, column, H0, front_axes, sides):
     """Case keywords shared by the collapses: the column body (a lattice source) at rest under the
     hydrostatic pressure of its lattice fill, the mu_i scheme with its options (granular_flow.py),
     the front gauge, the force of the grains on the wall named "floor" (and its moment about the
-    origin) into diagnostics.csv, the reference speed sqrt(g H0), and a warning for each of the ``sides`` ({symbol: length}) that is
-    not a whole number of dp, as the fill then changes the column's aspect ratio."""
+    origin) into diagnostics.csv, the reference speed sqrt(g H0), and a warning for each of the
+    ``sides`` ({symbol: length}) that is not a whole number of dp, as the fill then changes the
+    column's aspect ratio."""
     top = lattice_layers(H0, p.dp) * p.dp
     dim = len(column.lattice.frame.origin)
     return dict(

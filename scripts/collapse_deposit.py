@@ -125,7 +125,8 @@ def main():
         d = deposit(run)
         deposits.append(d)
         symbol = "r_0" if d["radial"] else "L_0"
-        print(f"{run}: {'axisymmetric' if d['radial'] else 'planar'} a = {d['a']:g}, {symbol} / dp = {d['resolution']:.1f} "
+        shape = "axisymmetric" if d["radial"] else "planar"
+        print(f"{run}: {shape} a = {d['a']:g}, {symbol} / dp = {d['resolution']:.1f} "
               f"({d['layers']} layers), t = {d['t']:.3g} s: runout ratio {d['ratio']:.3f} against Lube's "
               f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
               f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "

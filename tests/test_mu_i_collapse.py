@@ -213,8 +213,9 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     layer: the open gap of issue 14 in which the top sinks where Lube's stays); the surface at 0.5 L_0,
     inside the failing wedge, has sunk by about a layer and nothing stands at 1.25 L_0; the runout
     ratio is validate.py's; 90 % of the mass lies beyond 0.9 L_0, where it stood in the column (the
-    failing wedge has moved out), and within the runout, 99 % short of the farthest grain; the side-by-side profile (--profile 0.25) has the same surface at its stations, which end
-    at the farthest grain."""
+    failing wedge has moved out), and within the runout, 99 % short of the farthest grain; the
+    side-by-side profile (--profile 0.25) has the same surface at its stations, which end at the
+    farthest grain."""
     d = load_script("collapse_deposit").deposit(planar["implicit"])
     assert not d["radial"] and d["layers"] == 14 and d["resolution"] == pytest.approx(0.0972 / 0.006)
     assert 0.9 < d["centre"] <= 1.0
