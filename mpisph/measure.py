@@ -84,10 +84,16 @@ def _last_connected(occupied):
     return (gap[0] - 1) if len(gap) else len(occupied) - 1
 
 
+def outward_distance(x, radial=False):
+    """Each particle's distance along x, or (``radial``) from the z axis: how far a collapse has
+    carried it from its back wall or its axis."""
+    return np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+
+
 def _polar(x, sectors):
     """Distance from the z axis and azimuthal sector (of ``sectors``) of each particle."""
     sector = ((np.arctan2(x[:, 1], x[:, 0]) + np.pi) / (2 * np.pi) * sectors).astype(int) % sectors
-    return np.hypot(x[:, 0], x[:, 1]), sector
+    return outward_distance(x, radial=True), sector
 
 
 def _sector_runouts(r, sector, dp, sectors):
@@ -142,8 +148,7 @@ def mass_extent(frame, fraction, radial=False):
     the frame's particles lies: the centre of the particle at which their cumulative mass, in
     order of distance, reaches it. Unlike the edge of a deposit, it does not follow a sheet of a
     few grains' thickness that a finer spacing resolves further out."""
-    x = frame["x"]
-    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    distance = outward_distance(frame["x"], radial)
     order = np.argsort(distance, kind="stable")
     cumulative = np.cumsum(frame["mass"][order])
     return float(distance[order][np.searchsorted(cumulative, fraction * cumulative[-1])])

@@ -38,7 +38,7 @@ def surface_at(frame, dp, radial, length, stations):
     ``length`` from the axis or the back wall): the top grain within dp of the station plus dp / 2,
     0 where there is none."""
     x = frame["x"]
-    distance = (np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]) / length
+    distance = measure.outward_distance(x, radial) / length
     out = []
     for station in stations:
         near = np.abs(distance - station) < dp / length
@@ -50,7 +50,7 @@ def surface_line(frame, dp, radial, length):
     """The deposit's surface over ``length`` against the distance over ``length`` (bin centres),
     from measure.surface_profile on (distance from the axis or the back wall, height)."""
     x = frame["x"]
-    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    distance = measure.outward_distance(x, radial)
     centres, top = measure.surface_profile({"x": np.column_stack([distance, x[:, -1]])}, dp)
     return centres / length, top / length
 
@@ -65,7 +65,7 @@ def deposit(run):
     radial = p["case"] == "lube_collapse_3d"
     length = float(p["r_0"] if radial else p["L_0"])
     x = last["x"]
-    distance = np.hypot(x[:, 0], x[:, 1]) if radial else x[:, 0]
+    distance = measure.outward_distance(x, radial)
     height = x[:, -1]
     top0 = first["x"][:, -1].max() + 0.5 * dp
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)

@@ -12,9 +12,12 @@ import pytest
 from mpisph import measure
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.references import MU_I_MATERIALS
 from mpirun import mpisph
 from repo_script import load_script
 
+SAND = MU_I_MATERIALS["sand_0.4mm"]  # the collapses' sand (granular_column.py)
+MU_S, MU_2 = (np.tan(np.radians(SAND[k])) for k in ("mu_s_deg", "mu_2_deg"))
 COARSE = ["--set", "dp=0.006", "--t-end", "0.1", "--output-interval", "0.1", "--set", "diagnostics_every=10"]
 
 
@@ -66,7 +69,7 @@ def test_the_floor_holds_the_column_back(planar):
         weight = d["mass"][0] * 9.81
         along, down = d["force_floor_x"], -d["force_floor_y"]
         assert abs(along[0]) < 1e-9 * weight and 0.0 < down[0] <= weight
-        assert np.all(along[1:] > 0.0) and np.all(along <= np.tan(np.radians(51.3)) * down)
+        assert np.all(along[1:] > 0.0) and np.all(along <= MU_2 * down)
 
 
 def deposit_block(dp):
@@ -139,7 +142,7 @@ def test_the_floor_holds_a_sliding_sheet_between_mu_s_and_mu_2(tmp_path):
     assert speed[0] == pytest.approx(1.0)
     half = d["t"][np.argmax(speed < 0.5)]
     friction = 0.5 / (9.81 * half)
-    assert np.tan(np.radians(30.5)) <= friction <= np.tan(np.radians(51.3))
+    assert MU_S <= friction <= MU_2
 
 
 def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
@@ -216,7 +219,8 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     failing wedge has moved out), and within the runout, 99 % short of the farthest grain; the
     side-by-side profile (--profile 0.25) has the same surface at its stations, which end at the
     farthest grain."""
-    d = load_script("collapse_deposit").deposit(planar["implicit"])
+    script = load_script("collapse_deposit")
+    d = script.deposit(planar["implicit"])
     assert not d["radial"] and d["layers"] == 14 and d["resolution"] == pytest.approx(0.0972 / 0.006)
     assert 0.9 < d["centre"] <= 1.0
     fill = 14 * 0.006 / 0.0972
@@ -227,7 +231,7 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     assert d["beyond"] == 0 and d["ratio"] - 0.006 / 0.0972 <= d["farthest"] <= d["ratio"] + 0.5 * 0.006 / 0.0972
     assert -0.1 < d["extents"][0] < d["ratio"] and d["extents"] == sorted(d["extents"])
     assert d["extents"][-1] < d["farthest"]
-    table = load_script("collapse_deposit").profile_table([d, d], 0.25)
+    table = script.profile_table([d, d], 0.25)
     rows = {float(line.split()[0]): [float(v) for v in line.split()[1:]] for line in table[1:]}
     assert rows[0.5] == [round(d["surface"][0], 3)] * 2 and rows[1.0] == [round(d["surface"][2], 3)] * 2
     assert list(rows) == [0.25, 0.5, 0.75, 1.0] and d["farthest"] < 0.25  # stations up to the farthest grain
