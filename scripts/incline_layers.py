@@ -7,7 +7,8 @@ above the bed and prints, per layer: speed over the analytical u(z) (references)
 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the
 grains above the layer's centre), the friction mu(I) of the particles over tan(theta), and
 I over I_u. With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
-that the momentum sum uses, and the script also splits the shear traction across the planes
+that the momentum sum uses (with viscous_step=implicit: the stress of the velocities predicted to
+the middle of the step, not of those the kick solved for), and the script also splits the shear traction across the planes
 between the layers into the pressure pairs, the viscous pairs and the momentum the particles
 carry across (m u' v'), each over the weight's component along the slope: in a steady layer the
 three add up to 1. Frames must be close in time (an output interval of about 0.05 s) for the
@@ -69,8 +70,8 @@ def traction_table(frames, p):
         np.fill_diagonal(f_r, 0.0)
         mm = m[:, None] * m[None, :] * f_r
         on_i_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * dx
-        Tr = T / (rho**2)[:, None, None]
-        on_i_v = mm * ((Tr[:, None, 0, 0] + Tr[None, :, 0, 0]) * dx + (Tr[:, None, 0, 1] + Tr[None, :, 0, 1]) * dy)
+        on_i_v = mm / (rho[:, None] * rho[None, :]) * ((T[:, None, 0, 0] + T[None, :, 0, 0]) * dx
+                                                      + (T[:, None, 0, 1] + T[None, :, 0, 1]) * dy)
         layer = np.floor(x[:, 1] / dp).astype(int)
         layer -= layer.min()
         layer_mean = np.bincount(layer, f["v"][:, 0]) / np.bincount(layer)

@@ -9,7 +9,8 @@ import pytest
 from mpisph import references
 from mpisph.errors import InputError
 from mpisph.materials import MuIGranular
-from mpisph.physics.mu_i import momentum, strain_rate, viscous_force_tensor
+from mpisph.physics.mu_i import momentum
+from mpisph.physics.viscous_stress import strain_rate, stress_divergence, viscous_force_tensor
 from mpisph.physics.mu_i_law import (MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT, friction, grain_density_ratio,
                                      pair_viscosity, regularised_viscosity, residual_viscosity)
 from mpisph.correction import correction_matrix
@@ -194,7 +195,6 @@ def viscous_acceleration(dim, h_over_dp, corrected):
     v = np.zeros((n, dim))
     v[:, 0] = x[:, 1] ** 2
     zeros, acc = np.zeros(n), np.zeros((n, dim))
-    T = np.zeros((0, 1, 1))
     if corrected:
         B = np.zeros((n, size(dim)))
         correction_matrix(n, start, nbr, x, mass, rho, kind, k.params, B)
@@ -203,8 +203,10 @@ def viscous_acceleration(dim, h_over_dp, corrected):
                     gamma_dot)
         T = np.zeros((n, dim, dim))
         viscous_force_tensor(n, kind, strain, eta, B, T)
-    momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, T, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0,
-             2.0 * (dim + 2), MEAN_HARMONIC, k.params, acc)
+        stress_divergence(n, start, nbr, x, rho, T, mass, kind, np.zeros((n, dim)), k.params, acc)
+    else:
+        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0,
+                 2.0 * (dim + 2), MEAN_HARMONIC, k.params, acc)
     return acc[inner, 0] / (2 * 2.0 / 1000.0)
 
 

@@ -60,6 +60,9 @@ CASES = {
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
     # the implicit viscous kick: conjugate gradients with partition-independent sums
     "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
+    # the implicit kick of the corrected viscous stress: its stress sent to ghosts every iteration
+    "lube_collapse_2d corrected": (["--set", "dp=0.005", "viscous_form=corrected_stress", "--t-end", "0.06",
+                                    "--output-interval", "0.03"], 0.5),
     # the mu(I) density by kernel summation near a free surface
     "lube_collapse_2d reinit": (["--set", "dp=0.005", "density_reinit=free_surface", "--t-end", "0.06",
                                  "--output-interval", "0.03"], 0.5),

@@ -8,32 +8,39 @@ per second of collapse. With ``viscous_step = implicit`` the kick solves
     v(n+1) = v(n) + dt a_other(n+1/2) + dt a_visc[v(n+1)]
 
 for v(n+1), the viscosity, densities and positions frozen at n + 1/2 (the
-state the explicit forces use), a_visc the pair term of Eq. 27:
+state the explicit forces use), a_visc the scheme's viscous term, linear in
+the velocity at a frozen viscosity:
 
-    a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j),
-
-eta_ij the scheme's pair viscosity (mu_i_law.pair_viscosity).
+- ``PairTerm``, the pair term of Eq. 27,
+  a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j),
+  eta_ij the scheme's pair viscosity (mu_i_law.pair_viscosity). On a Morris
+  wall partner u_ij is beta (u_i - u_w) (Eqs. 34-36). On a free-slip wall the
+  pair force is projected on the wall normal n: the explicit form
+  beta (d.n)(n.u) d has a tangential part that cancels over a flat wall's
+  neighbours but would make the system unsymmetric; projected it is
+  beta (d.n)^2 (n.u) n.
+- ``CorrectedStress``, the divergence of 2 eta eps B of viscous_stress.py,
+  the adjoint of its gradient, walls included: an iteration takes two pair
+  passes (the gradient of the search direction, then the divergence of its
+  stress) and sends that stress to the ghosts.
 
 This is backward Euler for the viscous part: first order in time for it,
 stable for any dt and damping the stiffest modes (the resting grains move as a
-body), so the step falls back to the acoustic limit h / c0. On a Morris wall
-partner u_ij is beta (u_i - u_w) (Eqs. 34-36). On a free-slip wall the pair
-force is projected on the wall normal n: the explicit form beta (d.n)(n.u) d
-has a tangential part that cancels over a flat wall's neighbours but would
-make the system unsymmetric; projected it is beta (d.n)^2 (n.u) n.
-
-Multiplied by the masses, the system m (u - dt a_visc[u]) = m b is symmetric
-(m_i m_j eta_ij / (rho_i rho_j) is) and positive definite (each pair
-dissipates), so it is solved by conjugate gradients with the particles' own
-dim x dim diagonal blocks as preconditioner, from the first guess b + dt a_visc
-of the particle's last kick (field ``viscous_acceleration``; zero at the start of
-a run), whose residual is about a hundredth of b's in the 3D collapse
-(docs/PERFORMANCE.md). Its dot products are
-partition-independent sums (parallel/exact_sum.py), so the iterates, the
-iteration count and the particles stay bit for bit the same on any number of
-ranks. The iteration stops when the preconditioned residual, as an RMS
-velocity sqrt(r.z / sum m), is below ``TOLERANCE`` times the case's reference
-speed, or ``RELATIVE_TOLERANCE`` times its initial value.
+body), so the step falls back to the acoustic limit h / c0. Multiplied by the
+masses, the system m (u - dt a_visc[u]) = m b is symmetric and positive
+definite (each pair, or each particle's strain, dissipates), so it is solved by
+conjugate gradients with the particles' own dim x dim diagonal blocks as
+preconditioner, from the first guess b + dt a_visc of the particle's last kick
+(field ``viscous_acceleration``; zero at the start of a run), whose residual is
+about a hundredth of b's in the 3D collapse (docs/PERFORMANCE.md). The moving
+walls' velocities enter only the first residual, from the velocities
+themselves; the search directions vanish on walls, so the iterations apply the
+operator alone. Its dot products are partition-independent sums
+(parallel/exact_sum.py), so the iterates, the iteration count and the particles
+stay bit for bit the same on any number of ranks. The iteration stops when the
+preconditioned residual, as an RMS velocity sqrt(r.z / sum m), is below
+``TOLERANCE`` times the case's reference speed, or ``RELATIVE_TOLERANCE`` times
+its initial value.
 """
 
 import math
@@ -48,6 +55,7 @@ from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
 from ..tensors import adjugate
 from .mu_i_law import pair_viscosity
+from .viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
 from .walls import along_wall_normal, morris_beta
 
 TOLERANCE = 1e-7  # of the reference speed, RMS over the particles
@@ -100,9 +108,9 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
 
 
 @njit(cache=True)
-def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, homogeneous, out):
-    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``; the wall partners'
-    velocity is taken as zero when ``homogeneous`` (the operator alone), else their wall velocity."""
+def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, out):
+    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``, a wall partner's u its
+    wall velocity (zero in a search direction)."""
     dim = u.shape[1]
     for i in range(n):
         a0 = a1 = a2 = 0.0
@@ -110,14 +118,11 @@ def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, homogeneous, 
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
                 e0, e1, e2 = pair_difference(xc, i, j)
-                w = 1.0
-                if is_wall(kind[j]):  # off the common path
-                    w = 0.0 if homogeneous else 1.0
-                    if kind[j] == WALL_SLIP:
-                        e0, e1, e2 = along_wall_normal(j, normal, e0, e1, e2)
-                du = (u[i, 0] - w * u[j, 0]) * e0 + (u[i, 1] - w * u[j, 1]) * e1
+                if kind[j] == WALL_SLIP:  # off the common path
+                    e0, e1, e2 = along_wall_normal(j, normal, e0, e1, e2)
+                du = (u[i, 0] - u[j, 0]) * e0 + (u[i, 1] - u[j, 1]) * e1
                 if dim == 3:
-                    du += (u[i, 2] - w * u[j, 2]) * e2
+                    du += (u[i, 2] - u[j, 2]) * e2
                 c = coef[s] * du
                 a0 += c * e0
                 a1 += c * e1
@@ -198,17 +203,66 @@ def new_direction(n, kind, beta, z, p):
                 p[i, a] = z[i, a] + beta * p[i, a]
 
 
+class PairTerm:
+    """The pair term of Eq. 27 as the kick's operator (module docstring)."""
+
+    def __init__(self, scheme):
+        self.scheme = scheme
+        self.coef = None
+
+    def prepare(self, ctx, dt, inverse):
+        """The pairs' coefficients on this step's state and the preconditioner's blocks."""
+        pa, s = ctx.particles, self.scheme
+        self.coef = ctx.workspace.get("cg_coef", len(ctx.nbr))
+        viscous_pairs(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.gamma_dot, pa.mass, pa.kind,
+                      pa.normal, pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, dt,
+                      self.coef, inverse)
+
+    def apply(self, ctx, u, out):
+        """out = a_visc[u] of the owned particles, u current on the ghosts."""
+        pa = ctx.particles
+        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, u, out)
+
+
+class CorrectedStress:
+    """The divergence of the corrected viscous stress as the kick's operator (module docstring):
+    its stress of u is the particle field ``viscous_direction_stress``, sent to the ghosts."""
+
+    def __init__(self, scheme):
+        self.scheme = scheme
+        self.B = None
+
+    def prepare(self, ctx, dt, inverse):
+        """The preconditioner's blocks, from the neighbours' eta (a state field) and B, sent here."""
+        pa, s = ctx.particles, self.scheme
+        B = ctx.correction_matrices()
+        ctx.refresh(["B"])
+        stress_blocks(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.B, pa.mass, pa.kind,
+                      ctx.kernel.params, dt, inverse)
+        self.B = B
+
+    def apply(self, ctx, u, out):
+        """out = a_visc[u] of the owned particles, u current on the ghosts."""
+        pa, s, ws = ctx.particles, self.scheme, ctx.workspace
+        n, k = pa.n_owned, ctx.kernel.params
+        strain, gamma_dot = ws.get("cg_strain", n, (pa.B.shape[1],)), ws.get("cg_gamma_dot", n)
+        T = pa.viscous_direction_stress
+        strain_rate(n, ctx.start, ctx.nbr, ctx.xc, u, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
+                    s.beta_max, self.B, k, strain, gamma_dot)
+        viscous_force_tensor(n, pa.kind, strain, pa.eta, self.B, T)
+        ctx.refresh(["viscous_direction_stress"])
+        out[:] = 0.0
+        stress_divergence(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, T, pa.mass, pa.kind, pa.normal, k, out)
+
+
 class ImplicitViscosity:
     """The backward-Euler viscous kick (module docstring) of a mu_i scheme ``scheme``; its search
     direction is the particle field ``viscous_direction``, sent to ghosts every iteration."""
 
     def __init__(self, scheme, u_ref):
-        if scheme.corrected:
-            raise InputError("scheme mu_i: viscous_step = implicit takes the pair term of Eq. 27 "
-                             "(viscous_form = cleary)")
         if not u_ref > 0:
             raise InputError("scheme mu_i: viscous_step = implicit needs the case's reference speed u_ref")
-        self.scheme = scheme
+        self.operator = CorrectedStress(scheme) if scheme.corrected else PairTerm(scheme)
         self.u_ref = u_ref
         self.total_mass = None
         self.iterations = 0
@@ -216,24 +270,22 @@ class ImplicitViscosity:
     def kick(self, ctx, dt):
         """Replace the explicitly kicked velocities b of the owned moving particles (``v``, sent to
         the ghosts already) by the solution u of m (u - dt a_visc[u]) = m b + dt (wall terms)."""
-        pa, s, ws = ctx.particles, self.scheme, ctx.workspace
+        pa, ws, op = ctx.particles, ctx.workspace, self.operator
         n, dim, comm = pa.n_owned, pa.dim, ctx.halo.comm
         a_visc, r, z, q = (ws.get(name, n, (dim,)) for name in ("cg_a", "cg_r", "cg_z", "cg_q"))
         inverse = ws.get("cg_inverse", n, (dim, dim))
         terms = ws.get("cg_terms", n)[None, :]
-        coef = ws.get("cg_coef", len(ctx.nbr))
         p = pa.viscous_direction
         if self.total_mass is None:
             moving = (pa.kind[:n] == MOVING)[None, :]
             self.total_mass = global_sums(comm, np.where(moving, pa.mass[:n][None, :], 0.0))[0]
-        viscous_pairs(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.gamma_dot, pa.mass, pa.kind, pa.normal,
-                      pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, dt, coef, inverse)
+        op.prepare(ctx, dt, inverse)
         b = ws.get("cg_b", n, (dim,))
         b[:] = pa.v[:n]
         a_last = pa.viscous_acceleration
         first_guess(n, pa.kind, dt, a_last, pa.v)
         ctx.refresh(["v"])
-        viscous_acceleration(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, coef, pa.v, False, a_visc)
+        op.apply(ctx, pa.v, a_visc)
         residual(n, pa.kind, pa.mass, dt, a_visc, a_last, r, inverse, z, p, terms)
         rz = rz0 = global_sums(comm, terms)[0]
         floor = max(RELATIVE_TOLERANCE**2 * rz0, (TOLERANCE * self.u_ref) ** 2 * self.total_mass)
@@ -243,7 +295,7 @@ class ImplicitViscosity:
                 a_last[:n] = (pa.v[:n] - b) / dt
                 return
             ctx.refresh(["viscous_direction"])
-            viscous_acceleration(n, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, coef, p, True, a_visc)
+            op.apply(ctx, p, a_visc)
             operator(n, pa.kind, pa.mass, dt, p, a_visc, q, terms)
             alpha = rz / global_sums(comm, terms)[0]
             advance(n, pa.kind, alpha, p, q, pa.v, r, inverse, z, terms)

@@ -24,9 +24,10 @@ per pair). h_bar and c_bar of Eq. 38 are the one h and the sound speed at rest.
 
 The option ``viscous_form = corrected_stress`` replaces the pair term of Eq.
 27 by the divergence of the viscous stress 2 eta eps, eps from the gradient
-corrected with B of 000_ Eq. 24 (L_i = M_i B_i^T) and the sum
-sum_j m_j (T_i/rho_i^2 + T_j/rho_j^2) grad_i W_ij with T = 2 eta eps B, as the
-solids correct their shear stress (solid.py). It is exact for a quadratic
+corrected with B of 000_ Eq. 24 (L_i = M_i B_i) and the sum
+sum_j m_j (T_i + T_j) grad_i W_ij / (rho_i rho_j) with T = 2 eta eps B, the
+exact adjoint of that gradient, so that the force does the work the strain rate
+dissipates, walls included (viscous_stress.py). It is exact for a quadratic
 velocity on a lattice at h = 1.3 dp, where the pair term of Eq. 27 gives 81 %
 (2D) and 87 % (3D) of div(eta grad v) (tests/test_mu_i_law.py), and the mu(I)
 law magnifies such a deficit about eightfold in the speed of a uniform flow
@@ -39,6 +40,8 @@ relative velocity beta (v_i - v_w), only its normal part on a free-slip wall,
 where the pair offset is taken along the wall's normal in the strain rate and
 the momentum (walls.along_wall_normal, as the Riemann schemes and the implicit
 kick do: the wall pushes only along its normal, however irregular its lattice).
+The corrected stress sees a wall partner as a mirror image of particle i
+instead (viscous_stress.py says why).
 
 The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
 acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
@@ -63,79 +66,14 @@ from ..materials import MuIGranular
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
-from ..tensors import component
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
                        regularised_viscosity)
+from .viscous_stress import stress_divergence, strain_rate, viscous_force_tensor
 from .walls import WALL_DISTANCE, along_wall_normal, morris_relative_velocity, require_wall_distances
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
-
-
-@njit(cache=True)
-def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, beta_max, B, k, strain, gamma_dot):
-    """eps_i (packed, tensors.py) and gamma_dot_i = sqrt(2 eps_i : eps_i) of the moving particles
-    (004_ Eqs. 6, 31). With B of 000_ Eq. 24 (``B.shape[0] > 0``) the gradient is the
-    corrected L_i = M_i B_i^T, M_i the sum of Eq. 31."""
-    dim = xc.shape[1]
-    corrected = B.shape[0] > 0
-    for i in range(n):
-        if kind[i] != MOVING:
-            continue
-        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            u0, u1, u2 = pair_difference(v, i, j)
-            rho_j = rho[j]
-            if is_wall(kind[j]):  # off the common path
-                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
-                rho_j = rho[i]
-                if kind[j] == WALL_SLIP:
-                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
-            f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
-            m00 += f * u0 * d0
-            m01 += f * u0 * d1
-            m10 += f * u1 * d0
-            m11 += f * u1 * d1
-            if dim == 3:
-                m02 += f * u0 * d2
-                m12 += f * u1 * d2
-                m20 += f * u2 * d0
-                m21 += f * u2 * d1
-                m22 += f * u2 * d2
-        M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
-        norm = 0.0
-        for a in range(dim):
-            for b in range(a, dim):
-                if corrected:
-                    l_ab = l_ba = 0.0
-                    for c in range(dim):
-                        l_ab += M[a][c] * B[i, component(dim, c, b)]
-                        l_ba += M[b][c] * B[i, component(dim, c, a)]
-                else:
-                    l_ab, l_ba = M[a][b], M[b][a]
-                e = 0.5 * (l_ab + l_ba)
-                strain[i, component(dim, a, b)] = e
-                norm += e * e if a == b else 2.0 * e * e
-        gamma_dot[i] = np.sqrt(2.0 * norm)
-
-
-@njit(cache=True)
-def viscous_force_tensor(n, kind, strain, eta, B, T):
-    """T_i = 2 eta_i eps_i B_i, the viscous stress times the correction matrix (not symmetric),
-    of the moving particles."""
-    dim = T.shape[1]
-    for i in range(n):
-        if kind[i] != MOVING:
-            continue
-        for a in range(dim):
-            for b in range(dim):
-                acc = 0.0
-                for c in range(dim):
-                    acc += strain[i, component(dim, a, c)] * B[i, component(dim, c, b)]
-                T[i, a, b] = 2.0 * eta[i] * acc
 
 
 @njit(cache=True)
@@ -153,13 +91,11 @@ def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
 
 
 @njit(cache=True)
-def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal, wall_distance, beta_max, alpha,
+def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, alpha,
              c0, viscous_factor, mean, k, acc):
     """acc += the pressure, artificial-viscosity and viscous accelerations (004_ Eqs. 27, 37-38);
-    with ``T`` (``T.shape[0] > 0``) the viscous part is the corrected stress divergence
-    sum_j m_j (T_i/rho_i^2 + T_j/rho_j^2) grad_i W_ij instead of the pair term of Eq. 27."""
+    ``viscous_factor`` 0 leaves the viscous part out (to the corrected stress, or the implicit kick)."""
     dim = xc.shape[1]
-    corrected = T.shape[0] > 0
     for i in range(n):
         if kind[i] != MOVING:
             continue
@@ -169,10 +105,10 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
             u0, u1, u2 = pair_difference(v, i, j)
-            rho_j, p_j, eta_j, gamma_dot_j, tj = rho[j], p[j], eta[j], gamma_dot[j], j
+            rho_j, p_j, eta_j, gamma_dot_j = rho[j], p[j], eta[j], gamma_dot[j]
             if is_wall(kind[j]):  # off the common path
                 u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
-                rho_j, p_j, eta_j, gamma_dot_j, tj = rho[i], p[i], eta[i], gamma_dot[i], i
+                rho_j, p_j, eta_j, gamma_dot_j = rho[i], p[i], eta[i], gamma_dot[i]
                 if kind[j] == WALL_SLIP:
                     d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             rho_j2 = rho_j * rho_j
@@ -180,7 +116,7 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
             scalar = -(p[i] / rho_i2 + p_j / rho_j2)
             if alpha > 0.0:
                 scalar += alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))  # -Pi_ij
-            if not corrected and viscous_factor > 0.0:  # 0: the implicit kick takes the viscous term
+            if viscous_factor > 0.0:
                 eta_sum = eta[i] + eta_j
                 if eta_sum > 0.0:
                     scalar += pair_viscosity(viscous_factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) * vr_r2 \
@@ -189,17 +125,6 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, T, mass, kind, normal
             a0 += f * scalar * d0
             a1 += f * scalar * d1
             a2 += f * scalar * d2
-            if corrected:
-                for a in range(dim):
-                    t = 0.0
-                    for b in range(dim):
-                        t += (T[i, a, b] / rho_i2 + T[tj, a, b] / rho_j2) * (d0 if b == 0 else d1 if b == 1 else d2)
-                    if a == 0:
-                        a0 += f * t
-                    elif a == 1:
-                        a1 += f * t
-                    else:
-                        a2 += f * t
         acc[i, 0] += a0
         acc[i, 1] += a1
         if dim == 3:
@@ -251,17 +176,22 @@ class GranularMomentum(ForceTerm):
         self.scheme = scheme
 
     def add(self, ctx, acc):
-        self._add(ctx, acc, 0.0 if self.scheme.implicit else self.scheme.viscous_factor)
+        self._add(ctx, acc, not self.scheme.implicit)
 
     def add_all(self, ctx, acc):
-        self._add(ctx, acc, self.scheme.viscous_factor)
+        self._add(ctx, acc, True)
 
-    def _add(self, ctx, acc, viscous_factor):
-        """The pair sum, with the viscous term's factor (0: left to the implicit kick)."""
+    def _add(self, ctx, acc, viscous):
+        """The pair sum, with the viscous term or without it (left to the implicit kick); the
+        corrected stress's divergence is a pass of its own (viscous_stress.py)."""
         pa, s = ctx.particles, self.scheme
-        momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, s.force_tensors(pa),
-                 pa.mass, pa.kind, pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, viscous_factor,
-                 s.mean, ctx.kernel.params, acc)
+        pair_term = viscous and not s.corrected
+        momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, pa.mass, pa.kind,
+                 pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
+                 s.viscous_factor if pair_term else 0.0, s.mean, ctx.kernel.params, acc)
+        if viscous and s.corrected:
+            stress_divergence(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.T_visc, pa.mass, pa.kind, pa.normal,
+                              ctx.kernel.params, acc)
 
 
 VISCOUS_FORMS = ("cleary", "corrected_stress")
@@ -280,8 +210,8 @@ class MuIScheme(Scheme):
     ``cleary``, the pair term of Eq. 27 as printed, or ``corrected_stress``, the
     viscous stress 2 eta eps from the corrected gradient and its divergence with
     the correction matrix (module docstring), and ``viscous_step``: ``explicit``
-    (Eq. 39's viscous limit bounds the step) or ``implicit``, the pair term
-    taken backward in time in the kick (implicit_viscosity.py), and
+    (Eq. 39's viscous limit bounds the step) or ``implicit``, the viscous term
+    of either form taken backward in time in the kick (implicit_viscosity.py), and
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
     (mu_i_law.pair_viscosity; ghosts then need gamma_dot too).
     """
@@ -315,18 +245,18 @@ class MuIScheme(Scheme):
             self.fields += (
                 Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
                 Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
-            self.state_fields = ("p", "T_visc")
+            # the explicit divergence needs the neighbours' T, the implicit kick's preconditioner their eta
+            self.state_fields = ("p", "eta") if self.implicit else ("p", "T_visc")
         if self.implicit:
             self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
                                   "search direction of the implicit viscous kick [m/s]"),
                             Field("viscous_acceleration", ("dim",), np.float64,
                                   "viscous acceleration of the last implicit kick, its next first guess [m/s^2]"))
-        self._no_T, self._no_B = np.zeros((0, 1, 1)), np.zeros((0, 1))
-
-    def force_tensors(self, pa):
-        """T = 2 eta eps B of the corrected form, an empty array for the form of Eq. 27."""
-        return pa.T_visc if self.corrected else self._no_T
+            if self.corrected:
+                self.fields += (Field("viscous_direction_stress", ("dim", "dim"), np.float64,
+                                      "2 eta eps B of the implicit kick's search direction [Pa]"),)
+        self._no_B = np.zeros((0, 1))
 
     def initial_density(self, pressure):
         return self.material.density_at_rest(pressure)

@@ -4,16 +4,18 @@ A wall particle j has a wall velocity v_w and an inward normal n_w. In the
 pairwise sums a material particle i sees it with a mirrored velocity: the
 whole relative velocity mirrored for a no-slip wall (v_j = 2 v_w - v_i),
 only its normal part for a free-slip wall. The ghost-particle walls of
-Morris et al. that the mu(I) scheme uses (004_ Eqs. 34-36) scale the relative
+Morris et al. that the mu(I) scheme uses (004_ Eqs. 34-36; its corrected
+viscous stress keeps the mirror, physics/viscous_stress.py) scale the relative
 velocity by beta = min(beta_max, 1 + d_j/d_i) instead of 2, from the
 distances of the two particles to the wall surface. Densities, pressures and
 stresses of the partner are chosen by each scheme (fluid: hydrostatic
 pressure extrapolation; solids and mu(I): the wall takes the state of
 particle i).
 
-``wall_relative_velocity`` (mirror, beta = 2) and ``morris_relative_velocity``
-both give a wall partner's velocity through ``scaled_wall_velocity``. Pair loops compute the plain difference v_i - v_j and call it only
-when j is a wall particle, with the test written in the loop. That keeps the
+``wall_relative_velocity`` (mirror, beta = 2) and ``morris_relative_velocity`` both
+give a wall partner's velocity through ``scaled_wall_velocity``. Pair loops
+compute the plain difference v_i - v_j and call it only when j is a wall
+particle, with the test written in the loop. That keeps the
 common path straight-line code: moving the test and the call into one
 helper, inlined or not, makes the loops slower: continuity of the 2D column
 collapse at dp = 0.002 took 5.8 ms per call with an inlined helper instead of

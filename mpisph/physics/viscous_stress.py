@@ -1,0 +1,215 @@
+"""The strain rate of the mu(I) scheme and the divergence of its corrected viscous stress.
+
+In mpisph's sign convention (r_ij = x_i - x_j, g_ij = grad_i W_ij = W' r_ij / r),
+the velocity gradient of 004_ Eq. 31 and the corrected gradient of 000_ Eq. 24 are
+
+    M_i[u] = -sum_j V_j (u_i - u_j) (x) g_ij,   V_j = m_j / rho_j,   L_i = M_i B_i,
+
+eps the symmetric part of L and gamma_dot = sqrt(2 eps:eps) (004_ Eqs. 6, 31).
+With ``viscous_form = corrected_stress`` the viscous force is the divergence of
+the stress 2 eta eps, carried as T_i = 2 eta_i eps_i B_i, in the form that is
+the exact adjoint of the gradient above between material particles:
+
+    a_i[u] = sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j),
+
+so that sum_i m_i w_i . a_i[u] = -sum_i V_i 2 eta_i eps_i[u] : eps_i[w] for any
+two velocity fields u and w that the walls do not enter (docs/COLLAPSES.md
+derives it): the force does the work the strain rate dissipates. The form
+sum_j m_j (T_i / rho_i^2 + T_j / rho_j^2) g_ij of the solids (solid.py) differs
+from it by the grains' compression, rho_i / rho_j - 1.
+
+Walls. The pair term of Eq. 27 and its strain rate see a wall partner w as
+Morris et al. do (004_ Eqs. 34-36): the relative velocity beta (u_i - u_w),
+extrapolated to the wall particle's depth. The corrected form sees it as the
+solids do (solid.py), as a mirror image of particle i: the relative velocity
+2 (u_i - u_w) in the gradient, the stress T_w = T_i in the divergence,
+2 m_w T_i g_iw / rho_i^2, on a free-slip wall both taken along the wall normal n
+(walls.along_wall_normal: a free-slip wall carries no shear). That pair is the
+adjoint above with the walls included, and a uniform stress pushes nothing next
+to a wall either (the kernel sums of the particles and of the wall balance).
+Morris's beta cannot have both: the adjoint of the gradient's
+-(m_w / rho_i) beta (u_i - u_w) (x) g_iw is beta m_w T_i g_iw / rho_i^2, a wall
+that carries beta / 2 of the stress at its surface (three quarters at 004_'s
+beta_max = 1.5, a floor holding a quarter less than mu p), and the stress
+T_w = T_i with beta in the gradient is not symmetric, which the implicit kick
+needs (docs/COLLAPSES.md, tests/test_implicit_viscosity.py). The mirror's price
+is the strain rate next to a wall: the wall particles deeper than i get the
+velocity of i's mirror image, not the one on i's profile.
+"""
+
+import numpy as np
+from numba import njit
+
+from ..kernels import pair_dw
+from ..neighbours import pair_difference, pair_offset
+from ..particles import MOVING, WALL_SLIP, is_wall
+from ..tensors import adjugate, component, times_vector
+from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
+
+
+@njit(cache=True)
+def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, beta_max, B, k, strain, gamma_dot):
+    """eps_i (packed, tensors.py) and gamma_dot_i = sqrt(2 eps_i : eps_i) of the moving particles
+    (004_ Eqs. 6, 31), a wall partner seen as Morris et al. do. With B of 000_ Eq. 24
+    (``B.shape[0] > 0``) the gradient is the corrected L_i = M_i B_i, M_i the sum of Eq. 31, a wall
+    partner seen as a mirror image (module docstring)."""
+    dim = xc.shape[1]
+    corrected = B.shape[0] > 0
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            u0, u1, u2 = pair_difference(v, i, j)
+            rho_j = rho[j]
+            if is_wall(kind[j]):  # off the common path
+                if corrected:
+                    u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
+                else:
+                    u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
+                rho_j = rho[i]
+                if kind[j] == WALL_SLIP:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
+            f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
+            m00 += f * u0 * d0
+            m01 += f * u0 * d1
+            m10 += f * u1 * d0
+            m11 += f * u1 * d1
+            if dim == 3:
+                m02 += f * u0 * d2
+                m12 += f * u1 * d2
+                m20 += f * u2 * d0
+                m21 += f * u2 * d1
+                m22 += f * u2 * d2
+        M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
+        norm = 0.0
+        for a in range(dim):
+            for b in range(a, dim):
+                if corrected:
+                    l_ab = l_ba = 0.0
+                    for c in range(dim):
+                        l_ab += M[a][c] * B[i, component(dim, c, b)]
+                        l_ba += M[b][c] * B[i, component(dim, c, a)]
+                else:
+                    l_ab, l_ba = M[a][b], M[b][a]
+                e = 0.5 * (l_ab + l_ba)
+                strain[i, component(dim, a, b)] = e
+                norm += e * e if a == b else 2.0 * e * e
+        gamma_dot[i] = np.sqrt(2.0 * norm)
+
+
+@njit(cache=True)
+def viscous_force_tensor(n, kind, strain, eta, B, T):
+    """T_i = 2 eta_i eps_i B_i, the viscous stress times the correction matrix (not symmetric),
+    of the moving particles."""
+    dim = T.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            for b in range(dim):
+                acc = 0.0
+                for c in range(dim):
+                    acc += strain[i, component(dim, a, c)] * B[i, component(dim, c, b)]
+                T[i, a, b] = 2.0 * eta[i] * acc
+
+
+@njit(cache=True)
+def stress_divergence(n, start, nbr, xc, rho, T, mass, kind, normal, k, acc):
+    """acc_i += sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j) of the moving particles, a wall
+    partner's term 2 m_w T_i g_iw / rho_i^2, only its normal part on a free-slip wall (module
+    docstring)."""
+    dim = xc.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        a0 = a1 = a2 = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2, r = pair_offset(xc, i, j)
+            f = mass[j] * pair_dw(k, r, i, j) / r
+            if is_wall(kind[j]):  # off the common path: the mirror image's T_i
+                f *= 2.0 / (rho[i] * rho[i])
+                if kind[j] == WALL_SLIP:
+                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
+                t0, t1, t2 = _times(T, i, dim, d0, d1, d2)
+                if kind[j] == WALL_SLIP:
+                    t0, t1, t2 = along_wall_normal(j, normal, t0, t1, t2)
+            else:
+                f /= rho[i] * rho[j]
+                t0, t1, t2 = _times(T, i, dim, d0, d1, d2)
+                s0, s1, s2 = _times(T, j, dim, d0, d1, d2)
+                t0, t1, t2 = t0 + s0, t1 + s1, t2 + s2
+            a0 += f * t0
+            a1 += f * t1
+            a2 += f * t2
+        acc[i, 0] += a0
+        acc[i, 1] += a1
+        if dim == 3:
+            acc[i, 2] += a2
+
+
+@njit(inline="always")
+def _times(T, i, dim, d0, d1, d2):
+    """T_i d as three scalars (the third 0 in 2D)."""
+    if dim == 2:
+        return T[i, 0, 0] * d0 + T[i, 0, 1] * d1, T[i, 1, 0] * d0 + T[i, 1, 1] * d1, 0.0
+    return (T[i, 0, 0] * d0 + T[i, 0, 1] * d1 + T[i, 0, 2] * d2,
+            T[i, 1, 0] * d0 + T[i, 1, 1] * d1 + T[i, 1, 2] * d2,
+            T[i, 2, 0] * d0 + T[i, 2, 1] * d1 + T[i, 2, 2] * d2)
+
+
+@njit(cache=True)
+def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
+    """inverse_i: the inverse of m_i (I - dt J_i), J_i = d a_i / d u_i the diagonal block of the
+    stress divergence at frozen eta and B, of the moving particles (identity elsewhere): the
+    preconditioner of the implicit kick. u_i enters the gradient of each neighbour j, whose stress
+    then acts on i: J_i u = -sum_j (m_i m_j / (rho_i^2 rho_j)) 2 eta_j sym(u (x) c_j) c_j with
+    c_j = B_j g_ij; and its own gradient through H_i = sum_j V_j g_ij + 2 sum_w (m_w / rho_i) g_iw (no-slip walls):
+    -(2 eta_i / rho_i) sym(u (x) c_i) c_i with c_i = B_i H_i. The free-slip wall partners' part of
+    the latter is left out (the preconditioner only needs to be symmetric positive definite);
+    sym(u (x) c) c = (|c|^2 u + (c . u) c) / 2. Needs eta and B on the ghosts."""
+    dim = xc.shape[1]
+    block = np.zeros((dim, dim))
+    adj = np.zeros((dim, dim))
+    for i in range(n):
+        block[:, :] = 0.0
+        for a in range(dim):
+            block[a, a] = 1.0
+        if kind[i] == MOVING:
+            h0 = h1 = h2 = 0.0
+            for s in range(start[i], start[i + 1]):
+                j = nbr[s]
+                d0, d1, d2, r = pair_offset(xc, i, j)
+                f = pair_dw(k, r, i, j) / r
+                if is_wall(kind[j]):  # off the common path
+                    if kind[j] != WALL_SLIP:
+                        w = 2.0 * mass[j] / rho[i] * f
+                        h0, h1, h2 = h0 + w * d0, h1 + w * d1, h2 + w * d2
+                    continue
+                w = mass[j] / rho[j] * f
+                h0, h1, h2 = h0 + w * d0, h1 + w * d1, h2 + w * d2
+                c0, c1, c2 = times_vector(B, j, dim, f * d0, f * d1, f * d2)
+                _add_sym_block(block, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
+            c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
+            _add_sym_block(block, dt * eta[i] / rho[i], c0, c1, c2)
+            for a in range(dim):
+                for b in range(dim):
+                    block[a, b] *= mass[i]
+        det = adjugate(block, adj)
+        for a in range(dim):
+            for b in range(dim):
+                inverse[i, a, b] = adj[a, b] / det
+
+
+@njit(inline="always")
+def _add_sym_block(block, w, c0, c1, c2):
+    """block += w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c)."""
+    c = (c0, c1, c2)
+    cc = c0 * c0 + c1 * c1 + c2 * c2
+    for a in range(block.shape[0]):
+        block[a, a] += w * cc
+        for b in range(block.shape[0]):
+            block[a, b] += w * c[a] * c[b]
