@@ -70,6 +70,28 @@ def adjugate(A, out):
     return A[0, 0] * out[0, 0] + A[0, 1] * out[1, 0] + A[0, 2] * out[2, 0]
 
 
+@njit(inline="always")
+def set_identity(block):
+    """block = I."""
+    block[:, :] = 0.0
+    for a in range(block.shape[0]):
+        block[a, a] = 1.0
+
+
+@njit(inline="always")
+def store_scaled_inverse(block, scale, adj, out):
+    """out = (scale block)^-1 of a 2 x 2 or 3 x 3 block by its adjugate (``adj`` a scratch
+    matrix; ``block`` is scaled in place)."""
+    dim = block.shape[0]
+    for a in range(dim):
+        for b in range(dim):
+            block[a, b] *= scale
+    det = adjugate(block, adj)
+    for a in range(dim):
+        for b in range(dim):
+            out[a, b] = adj[a, b] / det
+
+
 def packed(full):
     """(n, d, d) symmetric tensors as (n, d (d + 1) / 2) packed rows (the upper triangle)."""
     full = np.asarray(full, dtype=np.float64)

@@ -8,11 +8,11 @@ above the bed and prints, per layer: speed over the analytical u(z) (references)
 grains above the layer's centre), the friction mu(I) of the particles over tan(theta), and
 I over I_u. With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
 that the momentum sum uses (with viscous_step=implicit: the stress of the velocities predicted to
-the middle of the step, not of those the kick solved for), and the script also splits the shear traction across the planes
-between the layers into the pressure pairs, the viscous pairs and the momentum the particles
-carry across (m u' v'), each over the weight's component along the slope: in a steady layer the
-three add up to 1. Frames must be close in time (an output interval of about 0.05 s) for the
-averages to settle.
+the middle of the step, not of those the kick solved for), and the script also splits the shear
+traction across the planes between the layers into the pressure pairs, the viscous pairs and the
+momentum the particles carry across (m u' v'), each over the weight's component along the slope: in
+a steady layer the three add up to 1. Frames must be close in time (an output interval of about 0.05
+s) for the averages to settle.
 """
 
 import argparse

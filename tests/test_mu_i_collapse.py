@@ -39,13 +39,13 @@ def planar(tmp_path_factory):
 
 @pytest.mark.parametrize("form", ["cleary", "corrected_stress"])
 def test_implicit_kick_follows_the_explicit_step(planar, form):
-    """Over the first 0.1 s (the column's foot runs out by about 1.5 dp) the kinetic energy and
-    the front of the implicit run, at steps 20 times longer, stay within 6 % and dp/4 of the
-    explicit run's, with either viscous form (largest gaps 4.2 % and 2.9 %, both 0.03 dp at steps
-    55 and 59 times longer, for Eq. 27's pair term and the corrected stress). Backward Euler is first order in the viscous part:
-    with Eq. 27's pair term the largest gap in kinetic energy, 4.5 % at t = 0.02 s, fell to 2.3,
-    1.2 and 0.6 % with the time step cut to 1/2, 1/4 and 1/8 (integrators/time_step.CFL_SINGLE
-    set to 0.2, 0.1, 0.05)."""
+    """Over the first 0.1 s (the column's foot runs out by about 1.5 dp) the kinetic energy and the
+    front of the implicit run, at steps 20 times longer, stay within 6 % and dp/4 of the explicit
+    run's, with either viscous form (largest gaps 4.2 % and 2.9 %, both 0.03 dp at steps 55 and 59
+    times longer, for Eq. 27's pair term and the corrected stress). Backward Euler is first order in
+    the viscous part: with Eq. 27's pair term the largest gap in kinetic energy, 4.5 % at t = 0.02
+    s, fell to 2.3, 1.2 and 0.6 % with the time step cut to 1/2, 1/4 and 1/8
+    (integrators/time_step.CFL_SINGLE set to 0.2, 0.1, 0.05)."""
     ex, im = (read_diagnostics(planar[form, s] / "diagnostics.csv") for s in ("explicit", "implicit"))
     assert np.median(ex["dt"][1:]) * 20 < np.median(im["dt"][1:])
     t = np.linspace(0.02, 0.1, 9)

@@ -53,7 +53,7 @@ from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
-from ..tensors import adjugate
+from ..tensors import set_identity, store_scaled_inverse
 from .mu_i_law import pair_viscosity
 from .viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
 from .walls import along_wall_normal, morris_beta
@@ -76,9 +76,7 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        block[:, :] = 0.0
-        for a in range(dim):
-            block[a, a] = 1.0
+        set_identity(block)
         if kind[i] == MOVING:
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
@@ -98,13 +96,7 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                 for a in range(dim):
                     for b in range(dim):
                         block[a, b] -= dt * c * e[a] * e[b]
-            for a in range(dim):
-                for b in range(dim):
-                    block[a, b] *= mass[i]
-        det = adjugate(block, adj)
-        for a in range(dim):
-            for b in range(dim):
-                inverse[i, a, b] = adj[a, b] / det
+        store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
 @njit(cache=True)

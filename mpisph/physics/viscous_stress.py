@@ -43,7 +43,7 @@ from numba import njit
 from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
-from ..tensors import adjugate, component, times_vector
+from ..tensors import component, set_identity, store_scaled_inverse, times_vector
 from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
 
 
@@ -175,9 +175,7 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        block[:, :] = 0.0
-        for a in range(dim):
-            block[a, a] = 1.0
+        set_identity(block)
         if kind[i] == MOVING:
             h0 = h1 = h2 = 0.0
             for s in range(start[i], start[i + 1]):
@@ -195,13 +193,7 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
                 _add_sym_block(block, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
             c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
             _add_sym_block(block, dt * eta[i] / rho[i], c0, c1, c2)
-            for a in range(dim):
-                for b in range(dim):
-                    block[a, b] *= mass[i]
-        det = adjugate(block, adj)
-        for a in range(dim):
-            for b in range(dim):
-                inverse[i, a, b] = adj[a, b] / det
+        store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
 @njit(inline="always")
