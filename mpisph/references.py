@@ -169,6 +169,12 @@ def planar_runout(a):
     return np.minimum(1.2 * a, 1.9 * a ** (2.0 / 3.0))
 
 
+# Balmforth & Kerswell (2005), J. Fluid Mech. 538, 399-428, abstract: the runout of planar columns,
+# (l_inf - L) / L ~ a^n, with n = 0.9 +- 0.1 in wide channels and 0.65 +- 0.05 in narrow slots (where
+# the side walls' friction holds the flow back). A plane-strain run has no side walls.
+PLANAR_RUNOUT_EXPONENTS = {"wide channels": (0.9, 0.1), "narrow slots": (0.65, 0.05)}
+
+
 def lateral_earth_force(coefficients, gamma, top, bottom, width):
     """Horizontal force on a vertical wall ``width`` wide spanning the depths ``top`` to ``bottom``
     below a level soil surface of unit weight ``gamma``, under the pressure sigma_h = max(0, k gamma z

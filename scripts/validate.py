@@ -834,6 +834,9 @@ def lube_collapse_2d(ranks):
               abs(slope - 1.2) <= 0.25),
              ("high-a exponent (a = 4, 6)", f"{exponent:.2f}", "0.67", f"{exponent - 0.67:+.2f}", "0.1",
               abs(exponent - 0.67) <= 0.1)]
+    for channel, (n, spread) in references.PLANAR_RUNOUT_EXPONENTS.items():
+        rows.append((f"high-a exponent against Balmforth & Kerswell's {channel} ({n:g} +- {spread:g})",
+                     f"{exponent:.2f}", f"{n:g}", f"{exponent - n:+.2f}", "-"))
     image = save(fig, "lube_collapse_2d.png")
     note = ("Runs with the cases' defaults: the implicit viscous kick (`viscous_step=explicit` is the paper's "
             "scheme) and the secant pair viscosity (`viscosity_mean=harmonic` is Eq. 37 as printed; "
@@ -843,7 +846,9 @@ def lube_collapse_2d(ranks):
             "harmonic mean the grains at the free surface (p = 0, so eta = 0) are decoupled from the pile and "
             "keep sliding over it: the deposit spreads to nearly twice Lube's runout. An open gap of issue 14: "
             "(1) the runouts follow 1.2 a up to a = 6, with too little bend to a^(2/3) (004_ also found no "
-            "agreement above a = 3); (2) the deposits' edges still creep at the end, as the regularisation lets "
+            "agreement above a = 3); Balmforth & Kerswell (2005) measured a^(0.9 +- 0.1) in wide channels and "
+            "a^(0.65 +- 0.05) only in narrow slots, whose side walls a plane-strain run lacks "
+            "(docs/COLLAPSES.md); (2) the deposits' edges still creep at the end, as the regularisation lets "
             "a grain at rest strain at about (tau / tau_y) / m_0 (Eq. 53: eta_max ~ tau_y m_0), which at "
             "m_0 = 1.2 s is above 1e-3 of the collapse's speed; the edge speed at the end is sensitive to "
             "round-off (runs that differ by 1e-5 m early give 4.7e-4 and 2.3e-3 at a = 2, 0.37 and 3.1e-3 at "
