@@ -222,16 +222,15 @@ class CorrectedStress:
 
     def __init__(self, scheme):
         self.scheme = scheme
-        self.B = None
 
     def prepare(self, ctx, dt, inverse):
-        """The preconditioner's blocks, from the neighbours' eta (a state field) and B, sent here."""
-        pa, s = ctx.particles, self.scheme
-        B = ctx.correction_matrices()
+        """The preconditioner's blocks, from the neighbours' eta (a state field) and B (the field
+        ``B``, computed for this configuration if it was not yet and sent here)."""
+        pa = ctx.particles
+        ctx.correction_matrices()
         ctx.refresh(["B"])
         stress_blocks(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.B, pa.mass, pa.kind,
                       ctx.kernel.params, dt, inverse)
-        self.B = B
 
     def apply(self, ctx, u, out):
         """out = a_visc[u] of the owned particles, u current on the ghosts."""
@@ -240,8 +239,8 @@ class CorrectedStress:
         strain, gamma_dot = ws.get("cg_strain", n, (pa.B.shape[1],)), ws.get("cg_gamma_dot", n)
         T = pa.viscous_direction_stress
         strain_rate(n, ctx.start, ctx.nbr, ctx.xc, u, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
-                    s.beta_max, self.B, k, strain, gamma_dot)
-        viscous_force_tensor(n, pa.kind, strain, pa.eta, self.B, T)
+                    s.beta_max, pa.B, k, strain, gamma_dot)
+        viscous_force_tensor(n, pa.kind, strain, pa.eta, pa.B, T)
         ctx.refresh(["viscous_direction_stress"])
         out[:] = 0.0
         stress_divergence(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, T, pa.mass, pa.kind, pa.normal, k, out)
