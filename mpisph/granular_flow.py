@@ -27,6 +27,8 @@ def mu_i_params(alpha_doc, viscous_step):
                               choices=("explicit", "implicit")),
         "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or "
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
+        "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
+                               "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
     }
 
 
@@ -34,4 +36,5 @@ def mu_i_scheme(p):
     """Case keywords of the mu_i scheme with the options of ``mu_i_params`` and symplectic Verlet."""
     return dict(scheme="mu_i", integrator="symplectic_verlet",
                 scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                                "viscous_step": p.viscous_step, "viscosity_mean": p.viscosity_mean})
+                                "viscous_step": p.viscous_step, "viscosity_mean": p.viscosity_mean,
+                                "pressure_form": p.pressure_form})

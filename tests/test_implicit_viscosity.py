@@ -95,7 +95,7 @@ def test_operator_is_the_explicit_pair_term_of_eq_27(dim, mean):
     zeros = np.zeros(s.n)
     explicit = np.zeros((s.n, dim))
     momentum(s.n, s.start, s.nbr, s.x, s.v, s.rho, zeros, s.eta, s.gamma_dot, s.mass, s.kind, s.normal,
-             s.wall_distance, 1.5, 0.0, 1.0, 2.0 * (dim + 2), mean, s.k.params, explicit)
+             s.wall_distance, 1.5, 0.0, 1.0, True, 2.0 * (dim + 2), mean, s.k.params, explicit)
     implicit = apply(s, s.v, mean=mean)
     np.testing.assert_allclose(implicit, explicit, rtol=0, atol=1e-12 * np.abs(explicit).max())
 

@@ -205,7 +205,7 @@ def viscous_acceleration(dim, h_over_dp, corrected):
         viscous_force_tensor(n, kind, strain, eta, B, T)
         stress_divergence(n, start, nbr, x, rho, T, mass, kind, np.zeros((n, dim)), k.params, acc)
     else:
-        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0,
+        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0, True,
                  2.0 * (dim + 2), MEAN_HARMONIC, k.params, acc)
     return acc[inner, 0] / (2 * 2.0 / 1000.0)
 

@@ -66,6 +66,7 @@ from ..materials import MuIGranular
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
+from ..tensors import adjugate, component
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
@@ -91,10 +92,35 @@ def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
 
 
 @njit(cache=True)
+def isotropic_pressure_stress(n, kind, p, B, T):
+    """T_i = -p_i s_i B_i with s_i = tr(B_i^-1) / D of the moving particles: the pressure's stress
+    whose pair sum sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j) has an isotropic virial (module
+    docstring). B^-1 is A = -sum_j V_j r_ij (x) g_ij of 000_ Eq. 24 wherever B is not regularised."""
+    dim = T.shape[1]
+    full = np.empty((dim, dim))
+    adj = np.empty((dim, dim))
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        for a in range(dim):
+            for b in range(dim):
+                full[a, b] = B[i, component(dim, a, b)]
+        det = adjugate(full, adj)
+        trace = 0.0
+        for a in range(dim):
+            trace += adj[a, a]
+        scale = -p[i] * trace / (det * dim)
+        for a in range(dim):
+            for b in range(dim):
+                T[i, a, b] = scale * full[a, b]
+
+
+@njit(cache=True)
 def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, alpha,
-             c0, viscous_factor, mean, k, acc):
+             c0, pair_pressure, viscous_factor, mean, k, acc):
     """acc += the pressure, artificial-viscosity and viscous accelerations (004_ Eqs. 27, 37-38);
-    ``viscous_factor`` 0 leaves the viscous part out (to the corrected stress, or the implicit kick)."""
+    ``pair_pressure`` False leaves the pressure out (to the isotropic pressure), ``viscous_factor`` 0
+    the viscous part (to the corrected stress, or the implicit kick)."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
@@ -113,7 +139,7 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, w
                     d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
             rho_j2 = rho_j * rho_j
             vr_r2 = (u0 * d0 + u1 * d1 + u2 * d2) / (r * r)
-            scalar = -(p[i] / rho_i2 + p_j / rho_j2)
+            scalar = -(p[i] / rho_i2 + p_j / rho_j2) if pair_pressure else 0.0
             if alpha > 0.0:
                 scalar += alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))  # -Pi_ij
             if viscous_factor > 0.0:
@@ -187,8 +213,11 @@ class GranularMomentum(ForceTerm):
         pa, s = ctx.particles, self.scheme
         pair_term = viscous and not s.corrected
         momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, pa.mass, pa.kind,
-                 pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0,
+                 pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, not s.isotropic,
                  s.viscous_factor if pair_term else 0.0, s.mean, ctx.kernel.params, acc)
+        if s.isotropic:
+            stress_divergence(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.T_pressure, pa.mass, pa.kind,
+                              pa.normal, ctx.kernel.params, acc)
         if viscous and s.corrected:
             stress_divergence(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.T_visc, pa.mass, pa.kind, pa.normal,
                               ctx.kernel.params, acc)
@@ -197,6 +226,7 @@ class GranularMomentum(ForceTerm):
 VISCOUS_FORMS = ("cleary", "corrected_stress")
 VISCOUS_STEPS = ("explicit", "implicit")
 VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_law's MEAN_* codes
+PRESSURE_FORMS = ("symmetric", "isotropic")
 
 
 class MuIScheme(Scheme):
@@ -220,7 +250,7 @@ class MuIScheme(Scheme):
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
-               "viscosity_mean": "harmonic"}
+               "viscosity_mean": "harmonic", "pressure_form": "symmetric"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
@@ -229,6 +259,7 @@ class MuIScheme(Scheme):
         self.corrected = self.option_choice("viscous_form", VISCOUS_FORMS) == "corrected_stress"
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
+        self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -247,6 +278,10 @@ class MuIScheme(Scheme):
                 Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
             # the explicit divergence needs the neighbours' T, the implicit kick's preconditioner their eta
             self.state_fields = ("p", "eta") if self.implicit else ("p", "T_visc")
+        if self.isotropic:
+            self.fields += (Field("T_pressure", ("dim", "dim"), np.float64,
+                                  "the pressure's stress times B, -p tr(B^-1) B / D [Pa]"),)
+            self.state_fields += ("T_pressure",)
         if self.implicit:
             self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
@@ -276,12 +311,14 @@ class MuIScheme(Scheme):
     def state(self, ctx):
         pa = ctx.particles
         n = pa.n_owned
-        B = ctx.correction_matrices() if self.corrected else self._no_B
+        B = ctx.correction_matrices() if self.corrected or self.isotropic else self._no_B
         strain_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
-                    self.beta_max, B, ctx.kernel.params, pa.strain, pa.gamma_dot)
+                    self.beta_max, B if self.corrected else self._no_B, ctx.kernel.params, pa.strain, pa.gamma_dot)
         granular_state(n, pa.kind, pa.rho, pa.gamma_dot, pa.rho_s, pa.p, pa.eta, self.dim, self.params)
         if self.corrected:
             viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, pa.T_visc)
+        if self.isotropic:
+            isotropic_pressure_stress(n, pa.kind, pa.p, B, pa.T_pressure)
 
     def rates(self, ctx, dt):
         pa = ctx.particles
