@@ -29,6 +29,8 @@ def mu_i_params(alpha_doc, viscous_step):
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
                                "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
+        "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 42) or carried, the share of it "
+                              "the pairs carry (physics/mu_i.py)", choices=("state", "carried")),
     }
 
 
@@ -37,4 +39,4 @@ def mu_i_scheme(p):
     return dict(scheme="mu_i", integrator="symplectic_verlet",
                 scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
                                 "viscous_step": p.viscous_step, "viscosity_mean": p.viscosity_mean,
-                                "pressure_form": p.pressure_form})
+                                "pressure_form": p.pressure_form, "law_pressure": p.law_pressure})

@@ -9,7 +9,8 @@ grains above the layer's centre), the friction mu(I) of the particles over tan(t
 I over I_u. With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
 that the momentum sum uses (with viscous_step=implicit: the stress of the velocities predicted to
 the middle of the step, not of those the kick solved for), and the script also splits the shear
-traction across the planes between the layers into the pressure pairs, the viscous pairs and the
+traction across the planes between the layers into the pressure pairs (with
+pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
 momentum the particles carry across (m u' v'), each over the weight's component along the slope: in
 a steady layer the three add up to 1. Frames must be close in time (an output interval of about 0.05
 s) for the averages to settle.
@@ -69,9 +70,11 @@ def traction_table(frames, p):
         f_r = kernel.derivative(r) / r  # grad_i W_ij = f_r r_ij
         np.fill_diagonal(f_r, 0.0)
         mm = m[:, None] * m[None, :] * f_r
-        on_i_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * dx
-        on_i_v = mm / (rho[:, None] * rho[None, :]) * ((T[:, None, 0, 0] + T[None, :, 0, 0]) * dx
-                                                      + (T[:, None, 0, 1] + T[None, :, 0, 1]) * dy)
+        if "T_pressure" in f:  # pressure_form = isotropic
+            on_i_p = _stress_pairs(mm, rho, f["T_pressure"], dx, dy)
+        else:
+            on_i_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * dx
+        on_i_v = _stress_pairs(mm, rho, T, dx, dy)
         layer = np.floor(x[:, 1] / dp).astype(int)
         layer -= layer.min()
         layer_mean = np.bincount(layer, f["v"][:, 0]) / np.bincount(layer)
@@ -86,6 +89,13 @@ def traction_table(frames, p):
             sums[n] += (-on_i_p[across].sum() / length / weight, -on_i_v[across].sum() / length / weight,
                         -carried / weight)
     return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
+
+
+def _stress_pairs(mm, rho, T, dx, dy):
+    """The slope-wise force m_i m_j (T_i + T_j) grad_i W_ij / (rho_i rho_j) on i of every pair
+    (physics/viscous_stress.py), mm = m_i m_j W' / r."""
+    return mm / (rho[:, None] * rho[None, :]) * ((T[:, None, 0, 0] + T[None, :, 0, 0]) * dx
+                                                 + (T[:, None, 0, 1] + T[None, :, 0, 1]) * dy)
 
 
 def main():

@@ -34,6 +34,34 @@ law magnifies such a deficit about eightfold in the speed of a uniform flow
 (docs/VALIDATION.md). With ``Case.density_reinit`` the density is reset by
 kernel summation (001_ Eq. 8, fluid.py) once per configuration.
 
+The option ``pressure_form = isotropic`` replaces the pressure pairs of Eq. 27
+by the same divergence of the stress T_i = -p_i s_i B_i, s_i = tr(A_i) / D with
+A_i = B_i^-1 = -sum_j V_j r_ij (x) g_ij. Why: a pair sum F_ij carries across a
+plane the stress of its virial, which for the pairs of Eq. 27 under a uniform
+pressure is -p A_i per particle. A is a multiple of the identity only on an
+isotropic arrangement; the particles of a sheared layer lie in sliding rows, where A has
+off-diagonal parts and the pressure pairs carry shear (0.4-0.5 % of the normal
+traction on a lattice sheared by 0.3 dp per row, tests/test_isotropic_pressure.py;
+3-10 % of the weight's shear in the steady incline, docs/INCLINE.md). An
+isotropic pressure carries none in the continuum. The stress T_i has the virial
+-p_i s_i B_i A_i = -p_i s_i I: isotropic, with the trace of Eq. 27's, so that the
+pressure pushes as hard as Eq. 27's on average, at a free surface (where
+s < 1) too. The pairs stay antisymmetric (linear momentum
+is conserved); walls take the mirror image's T_w = T_i (viscous_stress.py).
+
+The option ``law_pressure = carried`` puts into the friction law the pressure
+that the pairs carry, s_i p_i, rather than the grains' pressure p_i of Eq. 42.
+Why: the law is a ratio of stresses, shear over normal, and in the discrete
+balance of momentum the pairs carry the viscous stress in full (the virial of
+T = 2 eta eps B is 2 eta eps B A = 2 eta eps) but only s p of the pressure,
+with either pressure form (the trace of -p A). In a flowing layer s is
+0.94-0.95 (docs/INCLINE.md), so the layer holds its weight only with a pressure
+5-7 % above it, and a law that takes p then gives a friction that much below
+tan(theta) where the continuum gives tan(theta) (d ln I / d ln mu = 8.2 turns
+it into 40-55 % less shear). With s p the law's friction is the ratio of the
+stresses the pairs carry; I and the dilatancy of Eq. 8 take the same pressure
+(gamma_dot / sqrt(s) in Eq. 44). s tends to 1 as the kernel sums converge.
+
 Walls are the ghost particles of Morris et al. (Eqs. 34-36, walls.py): a wall
 partner takes the density, pressure and viscosity of particle i and the
 relative velocity beta (v_i - v_w), only its normal part on a free-slip wall,
@@ -66,7 +94,7 @@ from ..materials import MuIGranular
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
-from ..tensors import adjugate, component
+from ..tensors import component
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
@@ -78,41 +106,49 @@ VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous lim
 
 
 @njit(cache=True)
-def granular_state(n, kind, rho, gamma_dot, rho_s, p, eta, dim, m):
+def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m):
     """Grain density, pressure and regularised viscosity of the moving particles from their bulk
-    density and strain rate (004_ Eqs. 41-44, 46-47, 55; mu_i_law.py)."""
+    density and strain rate (004_ Eqs. 41-44, 46-47, 55; mu_i_law.py). With ``carried`` the law
+    takes the pressure the pairs carry, s p with s = tr(B^-1) / D (module docstring): I and the
+    dilatancy of Eq. 8 from gamma_dot / sqrt(s), eta from s p."""
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        x = grain_density_ratio(rho[i], gamma_dot[i], rho_s[i] / m.rho_s0, dim, m)
+        s = carried_fraction(B, i, dim) if carried else 1.0
+        x = grain_density_ratio(rho[i], gamma_dot[i] / math.sqrt(s), rho_s[i] / m.rho_s0, dim, m)
         rho_s[i] = x * m.rho_s0
         p[i] = (x - 1.0) / m.K_t
         I = inertial_number(rho[i], rho_s[i], m)
-        eta[i] = regularised_viscosity(p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
+        eta[i] = regularised_viscosity(s * p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
+
+
+@njit(inline="always")
+def carried_fraction(B, i, dim):
+    """s_i = tr(B_i^-1) / D = tr(A_i) / D, A_i = -sum_j V_j r_ij (x) g_ij (000_ Eq. 24, where B is
+    not regularised): the share of its pressure that a particle's pairs carry (module docstring)."""
+    if dim == 2:
+        b00, b11, b01 = B[i, component(2, 0, 0)], B[i, component(2, 1, 1)], B[i, component(2, 0, 1)]
+        return (b00 + b11) / (2.0 * (b00 * b11 - b01 * b01))
+    b00, b11, b22 = B[i, component(3, 0, 0)], B[i, component(3, 1, 1)], B[i, component(3, 2, 2)]
+    b01, b02, b12 = B[i, component(3, 0, 1)], B[i, component(3, 0, 2)], B[i, component(3, 1, 2)]
+    c00, c11, c22 = b11 * b22 - b12 * b12, b00 * b22 - b02 * b02, b00 * b11 - b01 * b01
+    det = b00 * c00 - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02)
+    return (c00 + c11 + c22) / (3.0 * det)
 
 
 @njit(cache=True)
 def isotropic_pressure_stress(n, kind, p, B, T):
     """T_i = -p_i s_i B_i with s_i = tr(B_i^-1) / D of the moving particles: the pressure's stress
     whose pair sum sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j) has an isotropic virial (module
-    docstring). B^-1 is A = -sum_j V_j r_ij (x) g_ij of 000_ Eq. 24 wherever B is not regularised."""
+    docstring)."""
     dim = T.shape[1]
-    full = np.empty((dim, dim))
-    adj = np.empty((dim, dim))
     for i in range(n):
         if kind[i] != MOVING:
             continue
+        scale = -p[i] * carried_fraction(B, i, dim)
         for a in range(dim):
             for b in range(dim):
-                full[a, b] = B[i, component(dim, a, b)]
-        det = adjugate(full, adj)
-        trace = 0.0
-        for a in range(dim):
-            trace += adj[a, a]
-        scale = -p[i] * trace / (det * dim)
-        for a in range(dim):
-            for b in range(dim):
-                T[i, a, b] = scale * full[a, b]
+                T[i, a, b] = scale * B[i, component(dim, a, b)]
 
 
 @njit(cache=True)
@@ -227,6 +263,7 @@ VISCOUS_FORMS = ("cleary", "corrected_stress")
 VISCOUS_STEPS = ("explicit", "implicit")
 VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_law's MEAN_* codes
 PRESSURE_FORMS = ("symmetric", "isotropic")
+LAW_PRESSURES = ("state", "carried")
 
 
 class MuIScheme(Scheme):
@@ -243,14 +280,17 @@ class MuIScheme(Scheme):
     (Eq. 39's viscous limit bounds the step) or ``implicit``, the viscous term
     of either form taken backward in time in the kick (implicit_viscosity.py), and
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
-    (mu_i_law.pair_viscosity; ghosts then need gamma_dot too).
+    (mu_i_law.pair_viscosity; ghosts then need gamma_dot too), and
+    ``pressure_form``: ``symmetric`` (Eq. 27) or ``isotropic``, and ``law_pressure``: ``state``
+    (the grains' pressure of Eq. 42) or ``carried`` (the share of it the pairs carry) in the
+    friction law (module docstring).
     """
 
     name = "mu_i"
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
-               "viscosity_mean": "harmonic", "pressure_form": "symmetric"}
+               "viscosity_mean": "harmonic", "pressure_form": "symmetric", "law_pressure": "state"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
@@ -260,6 +300,7 @@ class MuIScheme(Scheme):
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
+        self.carried = self.option_choice("law_pressure", LAW_PRESSURES) == "carried"
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -311,10 +352,11 @@ class MuIScheme(Scheme):
     def state(self, ctx):
         pa = ctx.particles
         n = pa.n_owned
-        B = ctx.correction_matrices() if self.corrected or self.isotropic else self._no_B
+        B = ctx.correction_matrices() if self.corrected or self.isotropic or self.carried else self._no_B
         strain_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
                     self.beta_max, B if self.corrected else self._no_B, ctx.kernel.params, pa.strain, pa.gamma_dot)
-        granular_state(n, pa.kind, pa.rho, pa.gamma_dot, pa.rho_s, pa.p, pa.eta, self.dim, self.params)
+        granular_state(n, pa.kind, pa.rho, pa.gamma_dot, B, self.carried, pa.rho_s, pa.p, pa.eta, self.dim,
+                       self.params)
         if self.corrected:
             viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, pa.T_visc)
         if self.isotropic:
