@@ -39,15 +39,16 @@ by the same divergence of the stress T_i = -p_i s_i B_i, s_i = tr(A_i) / D with
 A_i = B_i^-1 = -sum_j V_j r_ij (x) g_ij. Why: a pair sum F_ij carries across a
 plane the stress of its virial, which for the pairs of Eq. 27 under a uniform
 pressure is -p A_i per particle. A is a multiple of the identity only on an
-isotropic arrangement; the particles of a sheared layer lie in sliding rows, where A has
-off-diagonal parts and the pressure pairs carry shear (0.4-0.5 % of the normal
-traction on a lattice sheared by 0.3 dp per row, tests/test_isotropic_pressure.py;
-3-10 % of the weight's shear in the steady incline, docs/INCLINE.md). An
-isotropic pressure carries none in the continuum. The stress T_i has the virial
--p_i s_i B_i A_i = -p_i s_i I: isotropic, with the trace of Eq. 27's, so that the
-pressure pushes as hard as Eq. 27's on average, at a free surface (where
-s < 1) too. The pairs stay antisymmetric (linear momentum
-is conserved); walls take the mirror image's T_w = T_i (viscous_stress.py).
+isotropic arrangement; in a sheared layer the particles lie in sliding rows, A
+has off-diagonal parts and the pressure pairs carry shear (0.4-0.5 % of the
+normal traction on a lattice sheared by 0.3 dp per row,
+tests/test_isotropic_pressure.py; 3-10 % of the weight's shear in the steady
+incline, docs/INCLINE.md), where an isotropic pressure carries none in the
+continuum. The stress T_i has the virial -p_i s_i B_i A_i = -p_i s_i I:
+isotropic, with the trace of Eq. 27's, so that the pressure pushes as hard as
+Eq. 27's on average, at a free surface (where s < 1) too. The pairs stay
+antisymmetric (linear momentum is conserved); walls take the mirror image's
+T_w = T_i (viscous_stress.py).
 
 The option ``law_pressure = carried`` puts into the friction law the pressure
 that the pairs carry, s_i p_i, rather than the grains' pressure p_i of Eq. 42.
@@ -55,10 +56,10 @@ Why: the law is a ratio of stresses, shear over normal, and in the discrete
 balance of momentum the pairs carry the viscous stress in full (the virial of
 T = 2 eta eps B is 2 eta eps B A = 2 eta eps) but only s p of the pressure,
 with either pressure form (the trace of -p A). In a flowing layer s is
-0.94-0.95 (docs/INCLINE.md), so the layer holds its weight only with a pressure
-5-7 % above it, and a law that takes p then gives a friction that much below
+0.94-0.97 (docs/INCLINE.md), so the layer holds its weight only with a pressure
+3-7 % above it, and a law that takes p then gives a friction that much below
 tan(theta) where the continuum gives tan(theta) (d ln I / d ln mu = 8.2 turns
-it into 40-55 % less shear). With s p the law's friction is the ratio of the
+it into 25-45 % less shear). With s p the law's friction is the ratio of the
 stresses the pairs carry; I and the dilatancy of Eq. 8 take the same pressure
 (gamma_dot / sqrt(s) in Eq. 44). s tends to 1 as the kernel sums converge.
 
