@@ -61,7 +61,9 @@ with either pressure form (the trace of -p A). In a flowing layer s is
 tan(theta) where the continuum gives tan(theta) (d ln I / d ln mu = 8.2 turns
 it into 25-45 % less shear). With s p the law's friction is the ratio of the
 stresses the pairs carry; I and the dilatancy of Eq. 8 take the same pressure
-(gamma_dot / sqrt(s) in Eq. 44). s tends to 1 as the kernel sums converge.
+(gamma_dot / sqrt(s) in Eq. 44). s is 0.974 on the square lattice at h = 1.3 dp
+and lower in a disordered arrangement and near a free surface; it tends to 1
+only as h / dp grows.
 
 Walls are the ghost particles of Morris et al. (Eqs. 34-36, walls.py): a wall
 partner takes the density, pressure and viscosity of particle i and the
