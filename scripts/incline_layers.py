@@ -2,7 +2,8 @@
 
     .venv/bin/python scripts/incline_layers.py RUN_DIR [--frames 40]
 
-Averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers
+Prints the mean speed and the surface speed over the analytical ones in each of the last five
+frames, then averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers
 above the bed and prints, per layer: speed over the analytical u(z) (references), the shear rate
 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the
 grains above the layer's centre), the friction mu(I) of the particles over tan(theta), and
@@ -24,7 +25,17 @@ import numpy as np
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
-from mpisph.references import inclined_plane_velocity
+from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity
+
+
+def layer_speeds(frame, p, material):
+    """(mean speed along the slope over the analytical mean, mean speed of the particles within dp/2
+    of the top over the analytical surface speed) of one frame; the analytical mean of
+    u(z) ~ H^(3/2) - (H - z)^(3/2) over the depth is 3/5 of its surface value."""
+    x, u = frame["x"], frame["v"][:, 0]
+    surface = inclined_plane_surface_velocity(material, p["theta"], p["H"], p["g"])
+    top = x[:, 1] > x[:, 1].max() - 0.5 * p["dp"]
+    return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
 
 
 def layer_table(frames, p, material):
@@ -109,6 +120,8 @@ def main():
     material = build_case(module, resolve_params(module, {k: str(v) for k, v in p.items()
                                                           if k in module.PARAMS})).material
     print(f"{a.run}: {len(frames)} frames, t = {frames[0]['t']:.2f} to {frames[-1]['t']:.2f} s")
+    print("mean / surface speed over the analytical: " + ", ".join(
+        f"{f['t']:.2f} s {m:.3f} / {top:.3f}" for f in frames[-5:] for m, top in [layer_speeds(f, p, material)]))
     print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>7} {'p/p_h':>6} {'mu/tan':>7} {'I/I_u':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))

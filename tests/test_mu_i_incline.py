@@ -12,8 +12,9 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity
+from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity, inclined_plane_velocity
 from mpirun import mpisph
+from repo_script import load_script
 
 SMALL = ["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=8", "--set", "m_0=0.2"]
 
@@ -53,3 +54,21 @@ def test_grain_compressibility_puts_the_flow_at_mach_0_1(theta, speed):
     assert printed.K_t == INCLINED_PLANE_TABLE_2["K_t"]
     if speed == "steady":
         assert u / printed.c0 > 1.0
+
+
+def test_incline_layers_reads_the_uniform_flow_as_one():
+    """scripts/incline_layers.py's mean and surface speeds of a layer of particles moving with the
+    analytical profile (dp-spaced rows, 004_ Sec. 5.1's glass beads, H = 0.02 m) are 1 within the
+    rows' sampling of the profile; twice the profile gives 2."""
+    layers = load_script("incline_layers")
+    module = load_case_module("inclined_plane")
+    p = resolve_params(module, {"H": "0.02", "dp": "0.0005", "columns": "4"})
+    material = build_case(module, p).material
+    y = np.repeat((np.arange(40) + 0.5) * 0.0005, 4)
+    u = np.array([inclined_plane_velocity(material, 25.0, 0.02, 9.81, z) for z in y])
+    x = np.stack([np.tile((np.arange(4) + 0.5) * 0.0005, 40), y], axis=1)
+    for scale in (1.0, 2.0):
+        frame = {"x": x, "v": np.stack([scale * u, np.zeros_like(u)], axis=1)}
+        mean, surface = layers.layer_speeds(frame, p, material)
+        assert mean == pytest.approx(scale, rel=0.01)
+        assert surface == pytest.approx(scale, rel=0.02)
