@@ -97,7 +97,7 @@ from ..materials import MuIGranular
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
-from ..tensors import component
+from ..tensors import adjugate, component
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
@@ -114,10 +114,11 @@ def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m):
     density and strain rate (004_ Eqs. 41-44, 46-47, 55; mu_i_law.py). With ``carried`` the law
     takes the pressure the pairs carry, s p with s = tr(B^-1) / D (module docstring): I and the
     dilatancy of Eq. 8 from gamma_dot / sqrt(s), eta from s p."""
+    full, adj = np.empty((dim, dim)), np.empty((dim, dim))
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        s = carried_fraction(B, i, dim) if carried else 1.0
+        s = carried_fraction(B, i, full, adj) if carried else 1.0
         x = grain_density_ratio(rho[i], gamma_dot[i] / math.sqrt(s), rho_s[i] / m.rho_s0, dim, m)
         rho_s[i] = x * m.rho_s0
         p[i] = (x - 1.0) / m.K_t
@@ -126,17 +127,19 @@ def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m):
 
 
 @njit(inline="always")
-def carried_fraction(B, i, dim):
+def carried_fraction(B, i, full, adj):
     """s_i = tr(B_i^-1) / D = tr(A_i) / D, A_i = -sum_j V_j r_ij (x) g_ij (000_ Eq. 24, where B is
-    not regularised): the share of its pressure that a particle's pairs carry (module docstring)."""
-    if dim == 2:
-        b00, b11, b01 = B[i, component(2, 0, 0)], B[i, component(2, 1, 1)], B[i, component(2, 0, 1)]
-        return (b00 + b11) / (2.0 * (b00 * b11 - b01 * b01))
-    b00, b11, b22 = B[i, component(3, 0, 0)], B[i, component(3, 1, 1)], B[i, component(3, 2, 2)]
-    b01, b02, b12 = B[i, component(3, 0, 1)], B[i, component(3, 0, 2)], B[i, component(3, 1, 2)]
-    c00, c11, c22 = b11 * b22 - b12 * b12, b00 * b22 - b02 * b02, b00 * b11 - b01 * b01
-    det = b00 * c00 - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02)
-    return (c00 + c11 + c22) / (3.0 * det)
+    not regularised): the share of its pressure that a particle's pairs carry (module docstring).
+    ``full`` and ``adj`` are D x D scratch."""
+    dim = full.shape[0]
+    for a in range(dim):
+        for b in range(dim):
+            full[a, b] = B[i, component(dim, a, b)]
+    det = adjugate(full, adj)
+    trace = 0.0
+    for a in range(dim):
+        trace += adj[a, a]
+    return trace / (dim * det)
 
 
 @njit(cache=True)
@@ -145,13 +148,14 @@ def isotropic_pressure_stress(n, kind, p, B, T):
     whose pair sum sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j) has an isotropic virial (module
     docstring)."""
     dim = T.shape[1]
+    full, adj = np.empty((dim, dim)), np.empty((dim, dim))
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        scale = -p[i] * carried_fraction(B, i, dim)
+        scale = -p[i] * carried_fraction(B, i, full, adj)
         for a in range(dim):
             for b in range(dim):
-                T[i, a, b] = scale * B[i, component(dim, a, b)]
+                T[i, a, b] = scale * full[a, b]
 
 
 @njit(cache=True)
@@ -304,6 +308,7 @@ class MuIScheme(Scheme):
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
         self.carried = self.option_choice("law_pressure", LAW_PRESSURES) == "carried"
+        self.uses_B = self.corrected or self.isotropic or self.carried
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
         self.params = self.material.params
@@ -355,7 +360,7 @@ class MuIScheme(Scheme):
     def state(self, ctx):
         pa = ctx.particles
         n = pa.n_owned
-        B = ctx.correction_matrices() if self.corrected or self.isotropic or self.carried else self._no_B
+        B = ctx.correction_matrices() if self.uses_B else self._no_B
         strain_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
                     self.beta_max, B if self.corrected else self._no_B, ctx.kernel.params, pa.strain, pa.gamma_dot)
         granular_state(n, pa.kind, pa.rho, pa.gamma_dot, B, self.carried, pa.rho_s, pa.p, pa.eta, self.dim,
