@@ -144,26 +144,58 @@ def bed(lo, hi, dp, layers):
     return x, normal, depth(x)
 
 
+class _BoxShell(LatticePoints):
+    """The lattice of ``walls_around`` with each far side's layers (index >= ``counts[a]`` along
+    axis a) moved out by ``excess[a]``, that side's length beyond whole spacings, so that they start
+    dp/2 beyond the far side as the near side's start dp/2 before the near one."""
+
+    def __init__(self, lattice, counts, excess, **kw):
+        super().__init__(lattice, **kw)
+        self.counts = counts
+        self.excess = excess
+
+    def placed(self, index):
+        """Positions of the points with linear indices ``index``."""
+        x = self.lattice.points(index)
+        tuples = np.unravel_index(np.asarray(index, np.int64), self.lattice.shape)
+        for a, (t, first) in enumerate(zip(tuples, self.lattice.first)):
+            if self.excess[a] > 0.0:
+                x[:, a] += np.where(t + first >= self.counts[a], self.excess[a], 0.0)
+        return x
+
+    def window(self, axis, lo, hi):
+        index = self.lattice.window(axis, lo - self.excess[axis], hi)  # a superset: moves are outwards
+        x = self.placed(index)
+        inside = (x[:, axis] >= lo) & (x[:, axis] < hi)
+        return self.kept(index[inside], x[inside])
+
+    def position(self, index):
+        return self.placed(np.array([index]))[0]
+
+
 def walls_around(lo, hi, dp, layers, open_sides=()):
     """Dummy wall particles in ``layers`` lattice layers around the box [lo, hi], as a source.
 
     ``open_sides`` names sides left without wall, e.g. ``("+y",)`` for an
-    open top. The normal of a wall particle is the unit vector from it to the
-    nearest point of the box.
+    open top. Every side's layers start dp/2 behind it, on a side that is not a whole number of
+    spacings too: the far side's are moved out by the excess (``_BoxShell``), so its corner
+    particles stand dp plus the excess from their neighbours along the side. The normal of a wall
+    particle is the unit vector from it to the nearest point of the box.
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
-    ext_lo = lo - layers * dp
-    ext_hi = hi + layers * dp
+    counts = [lattice_layers(b - a, dp) for a, b in zip(lo, hi)]
+    excess = [b - a - n * dp for a, b, n in zip(lo, hi, counts)]
+    excess = [e if e > 1e-9 * dp else 0.0 for e in excess]  # a whole number of spacings to round-off
+    first = [-layers] * len(lo)
+    last = [n + layers for n in counts]
     for side in open_sides:
         a = "xyz".index(side[1])
         if side[0] == "+":
-            ext_hi[a] = hi[a]
+            last[a] = counts[a]
         else:
-            ext_lo[a] = lo[a]
-    first = tuple(int(round(v)) for v in (ext_lo - lo) / dp)
-    last = tuple(int(round(v)) for v in (ext_hi - lo) / dp)
-    lattice = Lattice(first, last, dp, Frame(origin=tuple(lo)))
+            first[a] = 0
+    lattice = Lattice(tuple(first), tuple(last), dp, Frame(origin=tuple(lo)))
 
     def outside(x):
         return ~np.all((x > lo) & (x < hi), axis=1)
@@ -172,8 +204,8 @@ def walls_around(lo, hi, dp, layers, open_sides=()):
         towards = np.clip(x, lo, hi) - x
         return towards / np.linalg.norm(towards, axis=1)[:, None]
 
-    inner = math.prod(lattice_layers(b - a, dp) for a, b in zip(lo, hi))
-    return LatticePoints(lattice, keep=outside, normal=towards_box, estimate=lattice.size - inner)
+    return _BoxShell(lattice, counts, excess, keep=outside, normal=towards_box,
+                     estimate=lattice.size - math.prod(counts))
 
 
 def depth_outside(lo, hi):

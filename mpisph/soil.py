@@ -86,9 +86,8 @@ def confined_layer(p, L, H, name, k_lateral):
 def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None):
     """Soil filling the box [lo, hi] inside an open-topped tank [tank_lo, tank_hi] of dummy walls
     (no-slip unless ``slip``) under geostatic stress (lateral coefficient ``k_lateral``, Jaky's
-    1 - sin phi if None); the domain reaches one block height above the block's top. A tank side
-    that is not a whole number of spacings is warned: its wall lattice does not start dp/2 outside
-    the side (at half a spacing over, a layer stands on the side itself, its normals undefined)."""
+    1 - sin phi if None); the domain reaches one block height above the block's top. A side of the
+    block that is not a whole number of spacings is warned: its fill falls short of it."""
     dim = len(lo)
     soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
     height, top = hi[-1] - lo[-1], hi[-1]
@@ -112,6 +111,6 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None)
         stabilisers=p.stabiliser,
         density_reinit=p.density_reinit,
         u_ref=float(np.sqrt(2.0 * p.g * height)),
-        warnings=[w for w in (lattice_mismatch(f"the tank's {'xyz'[a]} side", tank_hi[a] - tank_lo[a], p.dp)
-                              for a in range(dim - 1)) if w],
+        warnings=[w for w in (lattice_mismatch(f"the {name}'s {'xyz'[a]} side", hi[a] - lo[a], p.dp)
+                              for a in range(dim)) if w],
     )

@@ -68,7 +68,11 @@ class LatticePoints(Points):
 
     def window(self, axis, lo, hi):
         index = self.lattice.window(axis, lo, hi)
-        x = self.lattice.points(index)
+        return self.kept(index, self.lattice.points(index))
+
+    def kept(self, index, x):
+        """(indices, positions, normals or None) of the points among ``index`` (at ``x``) that
+        ``keep`` accepts."""
         if self.keep is not None:
             kept = self.keep(x)
             index, x = index[kept], x[kept]

@@ -86,10 +86,39 @@ def test_a_body_given_by_a_function_of_position_and_probes_in_a_lattice():
     assert case._initial_position(int(index[3])).tolist() == x[3].tolist()
 
 
-def test_a_tank_side_that_is_not_whole_spacings_is_warned():
-    """cube_failure_3d's 5 m floor at dp = 0.08 m is 62.5 spacings: the tank's wall lattice puts a layer
-    on its + sides (normals undefined), which the run's warnings say for x and y; at 0.25 m it is 20."""
+@pytest.mark.parametrize("hi", [(1.03, 0.67), (1.03, 0.66, 0.85)])
+def test_walls_around_a_box_not_whole_spacings_start_half_a_spacing_behind_every_side(hi):
+    """Every wall particle of a box whose sides are not whole spacings lies (k + 1/2) dp behind the
+    box, k < layers, with a unit normal; the far sides' layers hold as many particles as the near
+    sides'; any slabs of the walls make the whole."""
+    dp, layers = 0.1, 3
+    lo = (0.0,) * len(hi)
+    walls = walls_around(lo, hi, dp, layers, open_sides=(f"+{'xyz'[len(hi) - 1]}",))
+    for axis in range(len(hi)):
+        assert_slabs_make_the_whole(walls, axis, seed=axis)
+    x, normal = walls.everything()
+    assert len(x) == walls.estimate and np.all(np.isfinite(normal))
+    assert np.allclose(np.linalg.norm(normal, axis=1), 1.0)
+    behind = np.abs(x - np.clip(x, lo, hi)) / dp  # along each axis: 0 or k + 1/2
+    layer = np.where(behind > 0.0, behind - 0.5, 0.0)
+    assert np.allclose(layer, np.round(layer), atol=1e-9) and layer.min() > -1e-9 and layer.max() < layers
+    assert np.all(behind.max(axis=1) > 0.49)
+    for a in range(len(hi) - 1):
+        near, far = np.sum(x[:, a] < lo[a]), np.sum(x[:, a] > hi[a])
+        assert near == far > 0
+        assert np.isclose(x[:, a].max(), hi[a] + (layers - 0.5) * dp)
+
+
+def test_a_soil_block_side_that_is_not_whole_spacings_is_warned_and_its_tank_is_not():
+    """cube_failure_3d's 5 m floor at dp = 0.08 m is 62.5 spacings: no warning, its walls start dp/2
+    outside every side. A 2.1 m cube at 0.08 m is 26.25 spacings: the fill falls short, warned."""
     module = load_case_module("cube_failure_3d")
-    odd = build_case(module, resolve_params(module, {"dp": "0.08"}))
-    assert [w.split(" =")[0] for w in odd.warnings] == ["the tank's x side", "the tank's y side"]
-    assert build_case(module, resolve_params(module, {"dp": "0.25"})).warnings == []
+    case = build_case(module, resolve_params(module, {"dp": "0.08"}))
+    assert case.warnings == []
+    tank = case.walls[0]
+    x, normal = tank.x.everything()
+    floor = x[np.all(np.abs(x[:, :2]) < 2.5, axis=1)]
+    assert np.all(np.isfinite(normal)) and np.allclose(x[:, :2].max(axis=0), -x[:, :2].min(axis=0))
+    assert np.allclose(np.unique(np.round(tank.distance(floor) / 0.08, 9)), [0.5, 1.5, 2.5])
+    odd = build_case(module, resolve_params(module, {"dp": "0.08", "edge": "2.1"}))
+    assert [w.split(" =")[0] for w in odd.warnings] == [f"the soil cube's {a} side" for a in "xyz"]
