@@ -6,8 +6,10 @@ Prints the mean speed and the surface speed over the analytical ones in each of 
 frames, then averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers
 above the bed and prints, per layer: speed over the analytical u(z) (references), the shear rate
 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the
-grains above the layer's centre), the friction mu(I) of the particles over tan(theta), and
-I over I_u. With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
+grains above the layer's centre), the friction mu(I) of the particles over tan(theta), I over
+I_u, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
+A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
+pairs carry and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
 that the momentum sum uses (with viscous_step=implicit: the stress of the velocities predicted to
 the middle of the step, not of those the kick solved for), and the script also splits the shear
 traction across the planes between the layers into the pressure pairs (with
@@ -26,6 +28,7 @@ from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity
+from mpisph.tensors import unpacked
 
 
 def layer_speeds(frame, p, material):
@@ -38,29 +41,38 @@ def layer_speeds(frame, p, material):
     return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
 
 
+def kernel_moment(frame):
+    """(s, A_xy) of each particle of a 2D frame, A = B^-1; nan where the frame holds no B."""
+    if "B" not in frame:
+        return np.full(len(frame["x"]), np.nan), np.full(len(frame["x"]), np.nan)
+    A = np.linalg.inv(unpacked(frame["B"], 2))
+    return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
+
+
 def layer_table(frames, p, material):
-    """Rows (height, u/u_a, shear rate/analytical, p/p_h, mu/tan, I/I_u) averaged over ``frames``;
-    u/u_a is nan for a layer centred on the bed, where u_a = 0."""
+    """Rows (height, u/u_a, shear rate/analytical, p/p_h, mu/tan, I/I_u, s, A_xy) averaged over
+    ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0."""
     dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
     I_u, _ = material.uniform_flow(p["theta"])
     sums = {}
     for f in frames:
         y, m = f["x"][:, 1], f["mass"]
+        share, A_xy = kernel_moment(f)
         layer = np.floor(y / dp).astype(int)
         for k in np.unique(layer):
             s = layer == k
             centre = y[s].mean()
             p_h = (m[y > centre].sum() + 0.5 * m[s].sum()) * g * math.cos(theta) / length
             row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(), p_h,
-                   f["friction"][s].mean(), f["inertial_number"][s].mean())
+                   f["friction"][s].mean(), f["inertial_number"][s].mean(), share[s].mean(), A_xy[s].mean())
             sums.setdefault(k, []).append(row)
     rows = []
     for k in sorted(sums):
-        centre, u, rate, pressure, p_h, mu, I = np.mean(sums[k], axis=0)
+        centre, u, rate, pressure, p_h, mu, I, share, A_xy = np.mean(sums[k], axis=0)
         u_a = inclined_plane_velocity(material, p["theta"], p["H"], g, min(max(centre, 0.0), p["H"]))
         rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
         rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, mu / math.tan(theta),
-                     I / I_u))
+                     I / I_u, share, A_xy))
     return rows
 
 
@@ -122,7 +134,7 @@ def main():
     print(f"{a.run}: {len(frames)} frames, t = {frames[0]['t']:.2f} to {frames[-1]['t']:.2f} s")
     print("mean / surface speed over the analytical: " + ", ".join(
         f"{f['t']:.2f} s {m:.3f} / {top:.3f}" for f in frames[-5:] for m, top in [layer_speeds(f, p, material)]))
-    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>7} {'p/p_h':>6} {'mu/tan':>7} {'I/I_u':>6}")
+    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} {'s':>6} {'A_xy':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
     if "T_visc" in frames[-1]:

@@ -72,3 +72,15 @@ def test_incline_layers_reads_the_uniform_flow_as_one():
         mean, surface = layers.layer_speeds(frame, p, material)
         assert mean == pytest.approx(scale, rel=0.01)
         assert surface == pytest.approx(scale, rel=0.02)
+
+
+def test_incline_layers_reads_the_kernel_moment_from_the_frames_B():
+    """The script's s and A_xy are those of A = B^-1: B packed (xx, yy, xy) as the frames hold it;
+    nan for frames without B (viscous_form=cleary)."""
+    layers = load_script("incline_layers")
+    A = np.array([[0.95, -0.012], [-0.012, 0.93]])
+    B = np.linalg.inv(A)
+    frame = {"x": np.zeros((2, 2)), "B": np.tile([B[0, 0], B[1, 1], B[0, 1]], (2, 1))}
+    share, A_xy = layers.kernel_moment(frame)
+    assert share == pytest.approx([0.94, 0.94], rel=1e-12) and A_xy == pytest.approx([-0.012, -0.012], rel=1e-12)
+    assert np.all(np.isnan(layers.kernel_moment({"x": np.zeros((2, 2))})))
