@@ -31,6 +31,9 @@ def mu_i_params(alpha_doc, viscous_step):
                                "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
         "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 42) or carried, the share of it "
                               "the pairs carry (physics/mu_i.py)", choices=("state", "carried")),
+        "law_strain_rate": Param("own", "-", "strain rate of the friction law: own (each grain's, Eq. 31) or "
+                                 "kernel_mean, the modulus of its kernel mean (physics/mu_i.py)",
+                                 choices=("own", "kernel_mean")),
     }
 
 
@@ -39,4 +42,5 @@ def mu_i_scheme(p):
     return dict(scheme="mu_i", integrator="symplectic_verlet",
                 scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
                                 "viscous_step": p.viscous_step, "viscosity_mean": p.viscosity_mean,
-                                "pressure_form": p.pressure_form, "law_pressure": p.law_pressure})
+                                "pressure_form": p.pressure_form, "law_pressure": p.law_pressure,
+                                "law_strain_rate": p.law_strain_rate})

@@ -58,9 +58,11 @@ CASES = {
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),
-    # the isotropic pressure, the law's carried pressure and the corrected stress's implicit kick, periodic
+    # the isotropic pressure, the law's carried pressure and kernel-mean strain rate (eps sent to the ghosts)
+    # and the corrected stress's implicit kick, periodic
     "inclined_plane isotropic": (["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2", "pressure_form=isotropic",
-                                  "law_pressure=carried", "viscous_form=corrected_stress", "viscous_step=implicit",
+                                  "law_pressure=carried", "law_strain_rate=kernel_mean",
+                                  "viscous_form=corrected_stress", "viscous_step=implicit",
                                   "--t-end", "0.02", "--output-interval", "0.01"], 0.04),
     # the implicit viscous kick: conjugate gradients with partition-independent sums
     "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
