@@ -69,6 +69,15 @@ def _surface_profile(x, dp):
     return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top)
 
 
+def layer_means(frame, dp, values):
+    """(mean height, mean of ``values``) of the particles in each dp-thick layer above the bed
+    {y = 0} that holds any, from the bed up: a layer flowing down a slope, layer by layer."""
+    y = frame["x"][:, 1]
+    k = np.floor(y / dp).astype(int)
+    layers = np.unique(k)
+    return np.array([y[k == j].mean() for j in layers]), np.array([values[k == j].mean() for j in layers])
+
+
 def runout(frame, dp):
     """Right end of the connected deposit: the last dp-wide bin before the first empty one, plus its width.
 

@@ -3,20 +3,23 @@
     .venv/bin/python scripts/incline_layers.py RUN_DIR [--frames 40]
 
 Prints the mean speed and the surface speed over the analytical ones in each of the last five
-frames, then averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers
-above the bed and prints, per layer: speed over the analytical u(z) (references), the shear rate
-2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the
-grains above the layer's centre), the friction mu(I) of the particles over tan(theta), I over
-I_u, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
+frames, with the profile's L2 error over dp-thick layers and the layers' mean pressure over the
+hydrostatic one (the grains' p, and s p, the share the pairs carry: see below). Then it averages
+the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
+bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
+over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
+the layer's centre), the friction mu(I) of the particles over tan(theta), I over I_u, and, where
+the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
-pairs carry and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B
-that the momentum sum uses (with viscous_step=implicit: the stress of the velocities predicted to
-the middle of the step, not of those the kick solved for), and the script also splits the shear
-traction across the planes between the layers into the pressure pairs (with
-pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
-momentum the particles carry across (m u' v'), each over the weight's component along the slope: in
-a steady layer the three add up to 1. Frames must be close in time (an output interval of about 0.05
-s) for the averages to settle.
+pairs carry and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the
+frames hold the viscous stress T = 2 eta eps B that the momentum sum uses (with
+viscous_step=implicit: the stress of the velocities predicted to the middle of the step, not of
+those the kick solved for), and the script also splits the shear traction across the planes
+between the layers into the pressure pairs (with pressure_form=isotropic, those of the stress
+T_pressure the frames hold), the viscous pairs and the momentum the particles carry across
+(m u' v'), each over the weight's component along the slope: in a steady layer the three add up
+to 1. Frames must be close in time (an output interval of about 0.05 s) for the averages to
+settle.
 """
 
 import argparse
@@ -27,7 +30,9 @@ import numpy as np
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
-from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity
+from mpisph import measure
+from mpisph.references import (inclined_plane_pressure, inclined_plane_surface_velocity,
+                               inclined_plane_velocity)
 from mpisph.tensors import unpacked
 
 
@@ -47,6 +52,21 @@ def kernel_moment(frame):
         return np.full(len(frame["x"]), np.nan), np.full(len(frame["x"]), np.nan)
     A = np.linalg.inv(unpacked(frame["B"], 2))
     return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
+
+
+def profile_figures(frame, p, material):
+    """(L2 error of the layers' speed against u(z), the layers' mean pressure over the hydrostatic one,
+    the same for s p) of one frame, over dp-thick layers (measure.layer_means); the analytical
+    values are taken at the layers' heights, clipped to [0, H]."""
+    dp, theta, H, g = p["dp"], p["theta"], p["H"], p["g"]
+    y, u = measure.layer_means(frame, dp, frame["v"][:, 0])
+    _, pressure = measure.layer_means(frame, dp, frame["p"])
+    _, carried = measure.layer_means(frame, dp, kernel_moment(frame)[0] * frame["p"])
+    z = np.clip(y, 0.0, H)
+    u_a = inclined_plane_velocity(material, theta, H, g, z)
+    p_h = inclined_plane_pressure(material, theta, H, g, z).mean()
+    return (float(np.sqrt(np.mean((u - u_a) ** 2) / np.mean(u_a**2))), float(pressure.mean() / p_h),
+            float(carried.mean() / p_h))
 
 
 def layer_table(frames, p, material):
@@ -132,8 +152,11 @@ def main():
     material = build_case(module, resolve_params(module, {k: str(v) for k, v in p.items()
                                                           if k in module.PARAMS})).material
     print(f"{a.run}: {len(frames)} frames, t = {frames[0]['t']:.2f} to {frames[-1]['t']:.2f} s")
-    print("mean / surface speed over the analytical: " + ", ".join(
-        f"{f['t']:.2f} s {m:.3f} / {top:.3f}" for f in frames[-5:] for m, top in [layer_speeds(f, p, material)]))
+    print(f"{'t [s]':>6} {'mean':>6} {'surface':>7} {'L2':>6} {'p/p_h':>6} {'sp/p_h':>6}   "
+          "(speeds over the analytical)")
+    for f in frames[-5:]:
+        print(f"{f['t']:6.2f}" + "".join(f" {v:6.3f}" for v in (*layer_speeds(f, p, material),
+                                                                 *profile_figures(f, p, material))))
     print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} {'s':>6} {'A_xy':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))

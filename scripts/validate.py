@@ -652,15 +652,6 @@ def oscillating_beam_sph_as(ranks, h_over_dp=30, v_fs=references.BEAM_TABLE_1_V_
             " (and the same with each v_f)", rows, save(fig, "oscillating_beam_sph_as.png"), note)
 
 
-def _layers(frame, dp, name):
-    """(mean height, mean of field ``name``) of the grains in dp-thick layers above the bed."""
-    y = frame["x"][:, 1]
-    k = np.floor(y / dp).astype(int)
-    keep = [j for j in range(k.min(), k.max() + 1) if np.any(k == j)]
-    values = frame[name] if frame[name].ndim == 1 else frame[name][:, 0]
-    return np.array([y[k == j].mean() for j in keep]), np.array([values[k == j].mean() for j in keep])
-
-
 def inclined_plane(ranks):
     """004_ Sec. 5.1 with 004_ Table 2 (H = 0.1 m, dp = 5 mm, 40 columns, m_0 = 1 s) to 6.5 s: the
     viscous form, the pair-viscosity mean and alpha against the analytical profile; a layer on a
@@ -691,8 +682,8 @@ def inclined_plane(ranks):
             rows.append((f"{label}: blew up (a particle left the domain) at t [s]", f"{last['t']:.2f}",
                          f"{t_end:g} (end)", "-", f"runs to {t_end:g} s", False))
             last = frames[-2]  # the last regular frame
-        y, u = _layers(last, dp, "v")
-        _, p = _layers(last, dp, "p")
+        y, u = measure.layer_means(last, dp, last["v"][:, 0])
+        _, p = measure.layer_means(last, dp, last["p"])
         top = last["x"][:, 1] > last["x"][:, 1].max() - 0.5 * dp
         surface = last["v"][top, 0].mean()
         ua = references.inclined_plane_velocity(material, theta, H, g, np.clip(y, 0.0, H))
@@ -715,7 +706,7 @@ def inclined_plane(ranks):
     frames, _, _ = run("inclined_plane_level", "inclined_plane",
                        ["--set", "theta=0", "--t-end", "1", "--output-interval", "0.5"], ranks)
     last = frames[-1]
-    y, p = _layers(last, dp, "p")
+    y, p = measure.layer_means(last, dp, last["p"])
     rho = last["mass"].sum() / (columns * dp * H)
     ratio = np.mean(p) / np.mean(rho * g * (H - y))
     rows += [("level bed, 1 s: layer pressure / hydrostatic", f"{ratio:.3f}", "1", f"{100 * (ratio - 1):+.1f}%",
