@@ -31,8 +31,7 @@ from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph import measure
-from mpisph.references import (inclined_plane_pressure, inclined_plane_surface_velocity,
-                               inclined_plane_velocity)
+from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity
 from mpisph.tensors import unpacked
 
 
@@ -54,17 +53,26 @@ def kernel_moment(frame):
     return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
 
 
+def hydrostatic(frame, p):
+    """The hydrostatic pressure at the centre of each dp-thick layer (measure.layer_means' order): the
+    weight, normal to the slope, of the grains above it and of half the layer's own, per unit area."""
+    y, m, dp = frame["x"][:, 1], frame["mass"], p["dp"]
+    layer = np.floor(y / dp).astype(int)
+    weight = math.cos(math.radians(p["theta"])) * p["g"] / (p["columns"] * dp)
+    return np.array([(m[y > y[layer == k].mean()].sum() + 0.5 * m[layer == k].sum()) * weight
+                     for k in np.unique(layer)])
+
+
 def profile_figures(frame, p, material):
-    """(L2 error of the layers' speed against u(z), the layers' mean pressure over the hydrostatic one,
-    the same for s p) of one frame, over dp-thick layers (measure.layer_means); the analytical
-    values are taken at the layers' heights, clipped to [0, H]."""
+    """(L2 error of the layers' speed against u(z) at their heights clipped to [0, H], the layers'
+    mean pressure over their mean hydrostatic pressure, the same for s p) of one frame, over dp-thick
+    layers (measure.layer_means)."""
     dp, theta, H, g = p["dp"], p["theta"], p["H"], p["g"]
     y, u = measure.layer_means(frame, dp, frame["v"][:, 0])
     _, pressure = measure.layer_means(frame, dp, frame["p"])
     _, carried = measure.layer_means(frame, dp, kernel_moment(frame)[0] * frame["p"])
-    z = np.clip(y, 0.0, H)
-    u_a = inclined_plane_velocity(material, theta, H, g, z)
-    p_h = inclined_plane_pressure(material, theta, H, g, z).mean()
+    u_a = inclined_plane_velocity(material, theta, H, g, np.clip(y, 0.0, H))
+    p_h = hydrostatic(frame, p).mean()
     return (float(np.sqrt(np.mean((u - u_a) ** 2) / np.mean(u_a**2))), float(pressure.mean() / p_h),
             float(carried.mean() / p_h))
 
@@ -72,17 +80,16 @@ def profile_figures(frame, p, material):
 def layer_table(frames, p, material):
     """Rows (height, u/u_a, shear rate/analytical, p/p_h, mu/tan, I/I_u, s, A_xy) averaged over
     ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0."""
-    dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
+    dp, theta, g = p["dp"], math.radians(p["theta"]), p["g"]
     I_u, _ = material.uniform_flow(p["theta"])
     sums = {}
     for f in frames:
-        y, m = f["x"][:, 1], f["mass"]
+        y = f["x"][:, 1]
         share, A_xy = kernel_moment(f)
         layer = np.floor(y / dp).astype(int)
-        for k in np.unique(layer):
+        for k, p_h in zip(np.unique(layer), hydrostatic(f, p)):
             s = layer == k
             centre = y[s].mean()
-            p_h = (m[y > centre].sum() + 0.5 * m[s].sum()) * g * math.cos(theta) / length
             row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(), p_h,
                    f["friction"][s].mean(), f["inertial_number"][s].mean(), share[s].mean(), A_xy[s].mean())
             sums.setdefault(k, []).append(row)

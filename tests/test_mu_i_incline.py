@@ -12,8 +12,7 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.references import (INCLINED_PLANE_TABLE_2, inclined_plane_pressure, inclined_plane_surface_velocity,
-                               inclined_plane_velocity)
+from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity, inclined_plane_velocity
 from mpirun import mpisph
 from repo_script import load_script
 
@@ -68,10 +67,13 @@ def test_incline_layers_reads_the_uniform_flow_as_one():
     y = np.repeat((np.arange(40) + 0.5) * 0.0005, 4)
     u = np.array([inclined_plane_velocity(material, 25.0, 0.02, 9.81, z) for z in y])
     x = np.stack([np.tile((np.arange(4) + 0.5) * 0.0005, 40), y], axis=1)
-    pressure = inclined_plane_pressure(material, 25.0, 0.02, 9.81, y)
+    mass = np.full(len(y), 2.0e-4)
+    rows_above = 40 - np.floor(y / 0.0005) - 0.5  # the rows above a row's centre, half its own
+    pressure = rows_above * 4 * 2.0e-4 * 9.81 * math.cos(math.radians(25.0)) / (4 * 0.0005)  # their weight
     B = np.tile([1.0 / 0.9, 1.0 / 0.9, 0.0], (len(y), 1))  # A = 0.9 I: the pairs carry 0.9 p
     for scale in (1.0, 2.0):
-        frame = {"x": x, "v": np.stack([scale * u, np.zeros_like(u)], axis=1), "p": scale * pressure, "B": B}
+        frame = {"x": x, "v": np.stack([scale * u, np.zeros_like(u)], axis=1), "p": scale * pressure, "B": B,
+                 "mass": mass}
         mean, surface = layers.layer_speeds(frame, p, material)
         assert mean == pytest.approx(scale, rel=0.01)
         assert surface == pytest.approx(scale, rel=0.02)
