@@ -74,8 +74,9 @@ mean, but adds its variance to 2 eps:eps. In simple shear the law's eta = mu p /
 gives the shear stress 2 eta eps_xy = mu p (2 eps_xy / gamma_dot), short of mu p by the
 alignment 2 eps_xy / gamma_dot: 0.96-0.98 in the bulk of the steady incline at H/dp = 20 and
 0.90-0.95 at 10 (docs/INCLINE.md), a shear deficit that the law magnifies eightfold in the
-speed. The kernel mean averages the jostle out over about 13 particles (0.99 on the same frames)
-and leaves a smooth field as it is to second order in h. The viscous stress keeps the particle's
+speed. The kernel mean averages the jostle out over the kernel's support (21 particles on a
+square lattice at h = 1.3 dp; 0.98-0.99 on the same frames) and leaves a smooth field as it is to
+second order in h. The viscous stress keeps the particle's
 own eps (its divergence stays the gradient's adjoint); the mean needs eps on the ghosts (one
 halo refresh per step).
 
