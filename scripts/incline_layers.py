@@ -11,15 +11,15 @@ over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of
 the layer's centre), the friction mu(I) of the particles over tan(theta), I over I_u, and, where
 the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
-pairs carry and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the
-frames hold the viscous stress T = 2 eta eps B that the momentum sum uses (with
-viscous_step=implicit: the stress of the velocities predicted to the middle of the step, not of
-those the kick solved for), and the script also splits the shear traction across the planes
-between the layers into the pressure pairs (with pressure_form=isotropic, those of the stress
-T_pressure the frames hold), the viscous pairs and the momentum the particles carry across
-(m u' v'), each over the weight's component along the slope: in a steady layer the three add up
-to 1. Frames must be close in time (an output interval of about 0.05 s) for the averages to
-settle.
+pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
+viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
+sum uses (with viscous_step=implicit: the stress of the velocities predicted to the middle of the
+step, not of those the kick solved for), and the script also splits the shear and the normal
+traction across the planes between the layers into the pressure pairs (with
+pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
+momentum the particles carry across (m u' v', m v' v'), each over the weight's component along the
+slope and normal to it: in a steady layer each three add up to 1. Frames must be close in time
+(an output interval of about 0.05 s) for the averages to settle.
 """
 
 import argparse
@@ -78,8 +78,8 @@ def profile_figures(frame, p, material):
 
 
 def layer_table(frames, p, material):
-    """Rows (height, u/u_a, shear rate/analytical, p/p_h, mu/tan, I/I_u, s, A_xy) averaged over
-    ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0."""
+    """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/tan, I/I_u, s, A_xy) averaged
+    over ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0."""
     dp, theta, g = p["dp"], math.radians(p["theta"]), p["g"]
     I_u, _ = material.uniform_flow(p["theta"])
     sums = {}
@@ -90,26 +90,28 @@ def layer_table(frames, p, material):
         for k, p_h in zip(np.unique(layer), hydrostatic(f, p)):
             s = layer == k
             centre = y[s].mean()
-            row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(), p_h,
-                   f["friction"][s].mean(), f["inertial_number"][s].mean(), share[s].mean(), A_xy[s].mean())
+            row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(),
+                   (share[s] * f["p"][s]).mean(), p_h, f["friction"][s].mean(), f["inertial_number"][s].mean(),
+                   share[s].mean(), A_xy[s].mean())
             sums.setdefault(k, []).append(row)
     rows = []
     for k in sorted(sums):
-        centre, u, rate, pressure, p_h, mu, I, share, A_xy = np.mean(sums[k], axis=0)
+        centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy = np.mean(sums[k], axis=0)
         u_a = inclined_plane_velocity(material, p["theta"], p["H"], g, min(max(centre, 0.0), p["H"]))
         rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
-        rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, mu / math.tan(theta),
-                     I / I_u, share, A_xy))
+        rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, carried / p_h,
+                     mu / math.tan(theta), I / I_u, share, A_xy))
     return rows
 
 
 def traction_table(frames, p):
-    """Rows (plane height, shear traction of the pressure pairs, of the viscous pairs, of the momentum
-    carried across, each over the weight's component along the slope) at the planes between layers."""
+    """Rows (plane height, then for the shear and for the normal traction on the part above each plane
+    between layers: that of the pressure pairs, of the viscous pairs and of the momentum carried
+    across, each over the weight's component along the slope, then normal to it)."""
     dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
     kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
     planes = np.arange(1, int(p["H"] / dp)) * dp
-    sums = np.zeros((len(planes), 3))
+    sums = np.zeros((len(planes), 6))
     for f in frames:
         x, m, rho, pressure, T = f["x"], f["mass"], f["rho"], f["p"], f["T_visc"]
         dx = x[:, None, 0] - x[None, :, 0]
@@ -120,32 +122,35 @@ def traction_table(frames, p):
         f_r = kernel.derivative(r) / r  # grad_i W_ij = f_r r_ij
         np.fill_diagonal(f_r, 0.0)
         mm = m[:, None] * m[None, :] * f_r
-        if "T_pressure" in f:  # pressure_form = isotropic
-            on_i_p = _stress_pairs(mm, rho, f["T_pressure"], dx, dy)
-        else:
-            on_i_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * dx
-        on_i_v = _stress_pairs(mm, rho, T, dx, dy)
+        on_i = []  # (pressure, viscous) pair forces on i, along the slope, then normal to it
+        for c, d in ((0, dx), (1, dy)):
+            if "T_pressure" in f:  # pressure_form = isotropic
+                on_p = _stress_pairs(mm, rho, f["T_pressure"], dx, dy, c)
+            else:
+                on_p = -mm * ((pressure / rho**2)[:, None] + (pressure / rho**2)[None, :]) * d
+            on_i.append((on_p, _stress_pairs(mm, rho, T, dx, dy, c)))
         layer = np.floor(x[:, 1] / dp).astype(int)
         layer -= layer.min()
-        layer_mean = np.bincount(layer, f["v"][:, 0]) / np.bincount(layer)
-        u = f["v"][:, 0] - layer_mean[layer]
+        v = f["v"] - np.stack([np.bincount(layer, f["v"][:, c]) / np.bincount(layer) for c in (0, 1)], axis=1)[layer]
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]
-            weight = m[above].sum() * g * math.sin(theta) / length
+            weight = m[above].sum() * g / length
             band = np.abs(x[:, 1] - Y) < dp
-            carried = (m[band] * u[band] * f["v"][band, 1]).sum() / (2.0 * dp * length)
-            # the part above feels -(weight along the slope) from below in a steady layer
-            sums[n] += (-on_i_p[across].sum() / length / weight, -on_i_v[across].sum() / length / weight,
-                        -carried / weight)
+            flux = [(m[band] * v[band, c] * v[band, 1]).sum() / (2.0 * dp * length) for c in (0, 1)]
+            # in a steady layer the part above feels -(its weight along the slope) and +(its weight
+            # normal to the slope) from below
+            shear = [-a[across].sum() / length for a in on_i[0]] + [-flux[0]]
+            normal = [a[across].sum() / length for a in on_i[1]] + [flux[1]]
+            sums[n] += np.array(shear + normal) / np.repeat([weight * math.sin(theta), weight * math.cos(theta)], 3)
     return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
 
 
-def _stress_pairs(mm, rho, T, dx, dy):
-    """The slope-wise force m_i m_j (T_i + T_j) grad_i W_ij / (rho_i rho_j) on i of every pair
+def _stress_pairs(mm, rho, T, dx, dy, c):
+    """Component c of the force m_i m_j (T_i + T_j) grad_i W_ij / (rho_i rho_j) on i of every pair
     (physics/viscous_stress.py), mm = m_i m_j W' / r."""
-    return mm / (rho[:, None] * rho[None, :]) * ((T[:, None, 0, 0] + T[None, :, 0, 0]) * dx
-                                                 + (T[:, None, 0, 1] + T[None, :, 0, 1]) * dy)
+    return mm / (rho[:, None] * rho[None, :]) * ((T[:, None, c, 0] + T[None, :, c, 0]) * dx
+                                                 + (T[:, None, c, 1] + T[None, :, c, 1]) * dy)
 
 
 def main():
@@ -164,13 +169,16 @@ def main():
     for f in frames[-5:]:
         print(f"{f['t']:6.2f}" + "".join(f" {v:6.3f}" for v in (*layer_speeds(f, p, material),
                                                                  *profile_figures(f, p, material))))
-    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} {'s':>6} {'A_xy':>6}")
+    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} {'s':>6} "
+          f"{'A_xy':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
     if "T_visc" in frames[-1]:
-        print(f"{'plane':>7} {'pressure':>9} {'viscous':>8} {'carried':>8} {'sum':>6}   (shear traction / weight's)")
-        for Y, pressure, viscous, carried in traction_table(frames, p):
-            print(f"{1e3 * Y:7.2f} {pressure:9.3f} {viscous:8.3f} {carried:8.3f} {pressure + viscous + carried:6.3f}")
+        print(f"{'':7} {'shear traction / weight along the slope':^34}   {'normal traction / weight normal to it':^34}")
+        print(f"{'plane':>7}" + f" {'pressure':>8} {'viscous':>8} {'carried':>8} {'sum':>6}  " * 2)
+        for Y, *split in traction_table(frames, p):
+            print(f"{1e3 * Y:7.2f}" + "".join(f" {a:8.3f} {b:8.3f} {c:8.3f} {a + b + c:6.3f}  "
+                                              for a, b, c in (split[:3], split[3:])))
 
 
 if __name__ == "__main__":
