@@ -28,53 +28,10 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.incline_measures import hydrostatic, kernel_moment, layer_speeds, profile_figures
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
-from mpisph import measure
-from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity
-from mpisph.tensors import unpacked
-
-
-def layer_speeds(frame, p, material):
-    """(mean speed along the slope over the analytical mean, mean speed of the particles within dp/2
-    of the top over the analytical surface speed) of one frame; the analytical mean of
-    u(z) ~ H^(3/2) - (H - z)^(3/2) over the depth is 3/5 of its surface value."""
-    x, u = frame["x"], frame["v"][:, 0]
-    surface = inclined_plane_surface_velocity(material, p["theta"], p["H"], p["g"])
-    top = x[:, 1] > x[:, 1].max() - 0.5 * p["dp"]
-    return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
-
-
-def kernel_moment(frame):
-    """(s, A_xy) of each particle of a 2D frame, A = B^-1; nan where the frame holds no B."""
-    if "B" not in frame:
-        return np.full(len(frame["x"]), np.nan), np.full(len(frame["x"]), np.nan)
-    A = np.linalg.inv(unpacked(frame["B"], 2))
-    return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
-
-
-def hydrostatic(frame, p):
-    """The hydrostatic pressure at the centre of each dp-thick layer (measure.layer_means' order): the
-    weight, normal to the slope, of the grains above it and of half the layer's own, per unit area."""
-    y, m, dp = frame["x"][:, 1], frame["mass"], p["dp"]
-    layer = np.floor(y / dp).astype(int)
-    weight = math.cos(math.radians(p["theta"])) * p["g"] / (p["columns"] * dp)
-    return np.array([(m[y > y[layer == k].mean()].sum() + 0.5 * m[layer == k].sum()) * weight
-                     for k in np.unique(layer)])
-
-
-def profile_figures(frame, p, material):
-    """(L2 error of the layers' speed against u(z) at their heights clipped to [0, H], the layers'
-    mean pressure over their mean hydrostatic pressure, the same for s p) of one frame, over dp-thick
-    layers (measure.layer_means)."""
-    dp, theta, H, g = p["dp"], p["theta"], p["H"], p["g"]
-    y, u = measure.layer_means(frame, dp, frame["v"][:, 0])
-    _, pressure = measure.layer_means(frame, dp, frame["p"])
-    _, carried = measure.layer_means(frame, dp, kernel_moment(frame)[0] * frame["p"])
-    u_a = inclined_plane_velocity(material, theta, H, g, np.clip(y, 0.0, H))
-    p_h = hydrostatic(frame, p).mean()
-    return (float(np.sqrt(np.mean((u - u_a) ** 2) / np.mean(u_a**2))), float(pressure.mean() / p_h),
-            float(carried.mean() / p_h))
+from mpisph.references import inclined_plane_velocity
 
 
 def layer_table(frames, p, material):

@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 
+from mpisph import incline_measures
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity, inclined_plane_velocity
 from mpirun import mpisph
-from repo_script import load_script
 
 SMALL = ["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=8", "--set", "m_0=0.2"]
 
@@ -56,11 +56,11 @@ def test_grain_compressibility_puts_the_flow_at_mach_0_1(theta, speed):
         assert u / printed.c0 > 1.0
 
 
-def test_incline_layers_reads_the_uniform_flow_as_one():
-    """scripts/incline_layers.py's mean and surface speeds of a layer of particles moving with the
-    analytical profile (dp-spaced rows, 004_ Sec. 5.1's glass beads, H = 0.02 m) are 1 within the
-    rows' sampling of the profile; twice the profile gives 2."""
-    layers = load_script("incline_layers")
+def test_incline_measures_read_the_uniform_flow_as_one():
+    """The mean and surface speeds (incline_measures, as scripts/incline_layers.py prints them) of a
+    layer of particles moving with the analytical profile (dp-spaced rows, 004_ Sec. 5.1's glass
+    beads, H = 0.02 m) are 1 within the rows' sampling of the profile, its L2 error 0 and its
+    pressure the weight above; twice the profile and the pressure give 2, 1 and 2."""
     module = load_case_module("inclined_plane")
     p = resolve_params(module, {"H": "0.02", "dp": "0.0005", "columns": "4"})
     material = build_case(module, p).material
@@ -74,21 +74,20 @@ def test_incline_layers_reads_the_uniform_flow_as_one():
     for scale in (1.0, 2.0):
         frame = {"x": x, "v": np.stack([scale * u, np.zeros_like(u)], axis=1), "p": scale * pressure, "B": B,
                  "mass": mass}
-        mean, surface = layers.layer_speeds(frame, p, material)
+        mean, surface = incline_measures.layer_speeds(frame, p, material)
         assert mean == pytest.approx(scale, rel=0.01)
         assert surface == pytest.approx(scale, rel=0.02)
-        l2, grains, carried = layers.profile_figures(frame, p, material)
+        l2, grains, carried = incline_measures.profile_figures(frame, p, material)
         assert l2 == pytest.approx(scale - 1.0, abs=1e-12)
         assert grains == pytest.approx(scale, rel=1e-12) and carried == pytest.approx(0.9 * scale, rel=1e-12)
 
 
-def test_incline_layers_reads_the_kernel_moment_from_the_frames_B():
-    """The script's s and A_xy are those of A = B^-1: B packed (xx, yy, xy) as the frames hold it;
+def test_incline_measures_read_the_kernel_moment_from_the_frames_B():
+    """incline_measures' s and A_xy are those of A = B^-1: B packed (xx, yy, xy) as the frames hold it;
     nan for frames without B (viscous_form=cleary)."""
-    layers = load_script("incline_layers")
     A = np.array([[0.95, -0.012], [-0.012, 0.93]])
     B = np.linalg.inv(A)
     frame = {"x": np.zeros((2, 2)), "B": np.tile([B[0, 0], B[1, 1], B[0, 1]], (2, 1))}
-    share, A_xy = layers.kernel_moment(frame)
+    share, A_xy = incline_measures.kernel_moment(frame)
     assert share == pytest.approx([0.94, 0.94], rel=1e-12) and A_xy == pytest.approx([-0.012, -0.012], rel=1e-12)
-    assert np.all(np.isnan(layers.kernel_moment({"x": np.zeros((2, 2))})))
+    assert np.all(np.isnan(incline_measures.kernel_moment({"x": np.zeros((2, 2))})))
