@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mpisph import measure, references  # noqa: E402
+from mpisph import incline_measures, measure, references  # noqa: E402
 from mpisph.case import build_case, load_case_module, resolve_params  # noqa: E402
 from mpisph.compare import measures as compare_measures  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
@@ -739,6 +739,79 @@ def inclined_plane(ranks):
     return "Inclined plane (004_ Sec. 5.1)", cmd, rows, image, note
 
 
+CONSISTENT_MU_I = ("viscous_form=corrected_stress", "viscous_step=implicit", "pressure_form=isotropic",
+                   "law_pressure=carried", "law_strain_rate=kernel_mean")  # docs/INCLINE.md
+
+
+def inclined_plane_steady(ranks):
+    """The CI-sized layer of docs/INCLINE.md (H = 0.02 m, H/dp = 20, m_0 = 0.2 s, summation density)
+    with the corrected stress and the three options that make the law see the stresses the pairs
+    carry, to its steady state: speeds, profile and pressure averaged over the frames from 8 s."""
+    module = load_case_module("inclined_plane")
+    sets = ["H=0.02", "dp=0.001", "columns=32", "m_0=0.2", "density_reinit=inner", *CONSISTENT_MU_I]
+    params = resolve_params(module, dict(a.split("=") for a in sets))
+    material = build_case(module, params).material
+    H, theta, g, t_end, steady = params["H"], params["theta"], params["g"], 12.0, 8.0
+    frames, diag, cmd = run("inclined_plane_steady", "inclined_plane",
+                            ["--set", *sets, "--t-end", f"{t_end:g}", "--output-interval", "0.5"], ranks)
+    late = [f for f in frames if f["t"] >= steady - 1e-9]
+    figures = np.array([(*incline_measures.layer_speeds(f, params, material),
+                         *incline_measures.profile_figures(f, params, material)) for f in late])
+    mean, surface, l2, grains, carried = figures.mean(axis=0)
+    speed = diag["momentum_x"] / diag["mass"]
+    window = diag["t"] >= steady
+    trend = np.polyfit(diag["t"][window], speed[window], 1)[0] * (t_end - steady) / speed[window].mean()
+    T = references.inclined_plane_relaxation_time(material, theta, H, g)
+    span = f"{steady:g}-{t_end:g} s"
+    rows = [(f"mean speed / analytical mean, {span}", f"{mean:.3f}", "1", f"{100 * (mean - 1):+.1f}%", "-"),
+            (f"surface speed / analytical, {span}", f"{surface:.3f}", "1", f"{100 * (surface - 1):+.1f}%", "3%",
+             abs(surface - 1) <= 0.03),
+            (f"profile L2 error, {span}", f"{100 * l2:.1f}%", "0", "-", "5%", l2 <= 0.05),
+            (f"pressure the pairs carry, s p / weight above, {span}", f"{carried:.3f}", "1",
+             f"{100 * (carried - 1):+.1f}%", "2%", abs(carried - 1) <= 0.02),
+            (f"the grains' pressure p / weight above, {span}", f"{grains:.3f}", "1", f"{100 * (grains - 1):+.1f}%",
+             "-"),
+            (f"change of the mean speed over {span}, relative", f"{trend:+.3f}", "0 (steady)", "-", "-"),
+            ("relaxation time T at H = 0.02 m [s] (references.inclined_plane_relaxation_time)", f"{T:.2f}",
+             "-", "-", "-")]
+    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
+    z = np.linspace(0.0, H, 101)
+    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
+    layers = [measure.layer_means(f, params["dp"], f["v"][:, 0]) for f in late]
+    depth = min(len(y) for y, _ in layers)
+    ax[0].plot(np.mean([u[:depth] for _, u in layers], axis=0), np.mean([y[:depth] for y, _ in layers], axis=0),
+               "o-", ms=3, label=f"mpisph, mean of the frames {span}")
+    share = [measure.layer_means(f, params["dp"], incline_measures.kernel_moment(f)[0] * f["p"])[1][:depth]
+             for f in late]
+    weight = [incline_measures.hydrostatic(f, params)[:depth] for f in late]
+    ax[1].plot(np.mean(weight, axis=0), np.mean([y[:depth] for y, _ in layers], axis=0), "k--",
+               label="weight of the grains above")
+    ax[1].plot(np.mean(share, axis=0), np.mean([y[:depth] for y, _ in layers], axis=0), "o-", ms=3,
+               label="s p, the pressure the pairs carry")
+    ax[2].plot(diag["t"], speed, label="mpisph")
+    ax[2].axhline(0.6 * references.inclined_plane_surface_velocity(material, theta, H, g), color="k", ls="--",
+                  lw=0.8, label="analytical mean")
+    ax[0].set_xlabel("u [m/s]")
+    ax[0].set_ylabel("height above the bed [m]")
+    ax[1].set_xlabel("pressure [Pa]")
+    ax[2].set_xlabel("t [s]")
+    ax[2].set_ylabel("mean velocity down the slope [m/s]")
+    for a in ax:
+        a.legend(fontsize=7)
+    image = save(fig, "inclined_plane_steady.png")
+    note = ("The options are departures from 004_, each with a derivation and a test of its own "
+            "(physics/mu_i.py; docs/INCLINE.md): the pressure as the isotropic stress -p s B (no shear from a "
+            "pressure), the law's pressure s p, the share the pairs carry, and the law's strain rate the modulus "
+            "of the kernel mean of eps (the particles' jostle biases the modulus of each particle's own). The "
+            "as-printed scheme on this layer is 0.58 of the analytical mean speed (docs/INCLINE.md) and the "
+            "previous section runs it at 004_'s H = 0.1 m. Figures are means over the frames from 8 s (about "
+            "6 T); the pressures are against the weight of the grains above each layer's centre, as the layer "
+            "dilates above H. An open gap of issue 14: the surface runs ahead (the law reads a pressure 5-10 % "
+            "below the normal stress the pairs carry in the upper half, docs/INCLINE.md); the run at "
+            "H/dp = 40 and the alpha = 0.05 rows of 004_ Fig. 6 are still to come.")
+    return "Inclined plane at its steady state, H = 0.02 m (004_ Sec. 5.1)", cmd, rows, image, note
+
+
 REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
 
 
@@ -982,7 +1055,8 @@ VALIDATIONS = {"elliptical_drop": elliptical_drop, "elliptical_drop_remedies": e
                "oscillating_beam_sph_as": oscillating_beam_sph_as,
                "column_collapse_2d": column_collapse, "cohesive_failure_2d": cohesive_failure,
                "soil_cylinder_impact": soil_cylinder,
-               "inclined_plane": inclined_plane, "lube_collapse_2d": lube_collapse_2d,
+               "inclined_plane": inclined_plane, "inclined_plane_steady": inclined_plane_steady,
+               "lube_collapse_2d": lube_collapse_2d,
                "lube_collapse_3d": lube_collapse_3d}
 MARK = "<!-- section: {} -->"
 
