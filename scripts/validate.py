@@ -652,6 +652,28 @@ def oscillating_beam_sph_as(ranks, h_over_dp=30, v_fs=references.BEAM_TABLE_1_V_
             " (and the same with each v_f)", rows, save(fig, "oscillating_beam_sph_as.png"), note)
 
 
+def _incline_panels(material, theta, H, g):
+    """A figure of three panels for a layer down a slope: the speed profile with the analytical one,
+    the pressure profile, the mean speed against time with the analytical mean."""
+    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
+    z = np.linspace(0.0, H, 101)
+    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
+    ax[2].axhline(0.6 * references.inclined_plane_surface_velocity(material, theta, H, g), color="k", ls="--",
+                  lw=0.8, label="analytical mean")
+    return fig, ax
+
+
+def _finish_incline_panels(ax, pressure):
+    """Axis labels (``pressure``: the middle panel's) and legends of ``_incline_panels``."""
+    ax[0].set_xlabel("u [m/s]")
+    ax[0].set_ylabel("height above the bed [m]")
+    ax[1].set_xlabel(pressure)
+    ax[2].set_xlabel("t [s]")
+    ax[2].set_ylabel("mean velocity down the slope [m/s]")
+    for a in ax:
+        a.legend(fontsize=7)
+
+
 def inclined_plane(ranks):
     """004_ Sec. 5.1 with 004_ Table 2 (H = 0.1 m, dp = 5 mm, 40 columns, m_0 = 1 s) to 6.5 s: the
     viscous form, the pair-viscosity mean and alpha against the analytical profile; a layer on a
@@ -663,11 +685,9 @@ def inclined_plane(ranks):
     H, dp, theta, g, columns, t_end = params["H"], params["dp"], params["theta"], params["g"], params["columns"], 6.5
     material = build_case(module, params).material
     u_s = references.inclined_plane_surface_velocity(material, theta, H, g)
-    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
+    fig, ax = _incline_panels(material, theta, H, g)
     z = np.linspace(0.0, H, 101)
-    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
     ax[1].plot(references.inclined_plane_pressure(material, theta, H, g, z), z, "k--", label="hydrostatic")
-    ax[2].axhline(0.6 * u_s, color="k", ls="--", lw=0.8, label="analytical mean")
     rows, cmd = [], None
     for form, alpha, mean in (("cleary", 0.0, "harmonic"), ("cleary", 0.05, "harmonic"), ("cleary", 0.0, "secant"),
                               ("cleary", 0.05, "secant"), ("corrected_stress", 0.0, "-")):
@@ -712,13 +732,7 @@ def inclined_plane(ranks):
     rows += [("level bed, 1 s: layer pressure / hydrostatic", f"{ratio:.3f}", "1", f"{100 * (ratio - 1):+.1f}%",
               "2%", abs(ratio - 1) <= 0.02),
              ("level bed, 1 s: largest speed [m/s]", f"{np.linalg.norm(last['v'], axis=1).max():.1e}", "0", "-", "-")]
-    ax[0].set_xlabel("u [m/s]")
-    ax[0].set_ylabel("height above the bed [m]")
-    ax[1].set_xlabel("p [Pa]")
-    ax[2].set_xlabel("t [s]")
-    ax[2].set_ylabel("mean velocity down the slope [m/s]")
-    for a in ax:
-        a.legend(fontsize=7)
+    _finish_incline_panels(ax, "p [Pa]")
     image = save(fig, "inclined_plane.png")
     note = ("004_ Table 2: H = 0.1 m, dp = 5 mm, 40 columns (800 grains), m_0 = 1 s, the explicit step of "
             "Eq. 39, to 6.5 s, where 004_ reports its steady state; K_t for Mach 0.1 at the analytical surface "
@@ -774,9 +788,7 @@ def inclined_plane_steady(ranks):
             (f"change of the mean speed over {span}, relative", f"{trend:+.3f}", "0 (steady)", "-", "-"),
             ("relaxation time T at H = 0.02 m [s] (references.inclined_plane_relaxation_time)", f"{T:.2f}",
              "-", "-", "-")]
-    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
-    z = np.linspace(0.0, H, 101)
-    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
+    fig, ax = _incline_panels(material, theta, H, g)
     layers = [measure.layer_means(f, params["dp"], f["v"][:, 0]) for f in late]
     depth = min(len(y) for y, _ in layers)
     ax[0].plot(np.mean([u[:depth] for _, u in layers], axis=0), np.mean([y[:depth] for y, _ in layers], axis=0),
@@ -789,15 +801,7 @@ def inclined_plane_steady(ranks):
     ax[1].plot(np.mean(share, axis=0), np.mean([y[:depth] for y, _ in layers], axis=0), "o-", ms=3,
                label="s p, the pressure the pairs carry")
     ax[2].plot(diag["t"], speed, label="mpisph")
-    ax[2].axhline(0.6 * references.inclined_plane_surface_velocity(material, theta, H, g), color="k", ls="--",
-                  lw=0.8, label="analytical mean")
-    ax[0].set_xlabel("u [m/s]")
-    ax[0].set_ylabel("height above the bed [m]")
-    ax[1].set_xlabel("pressure [Pa]")
-    ax[2].set_xlabel("t [s]")
-    ax[2].set_ylabel("mean velocity down the slope [m/s]")
-    for a in ax:
-        a.legend(fontsize=7)
+    _finish_incline_panels(ax, "pressure [Pa]")
     image = save(fig, "inclined_plane_steady.png")
     note = ("The options are departures from 004_, each with a derivation and a test of its own "
             "(physics/mu_i.py; docs/INCLINE.md): the pressure as the isotropic stress -p s B (no shear from a "
