@@ -29,14 +29,21 @@ def kernel_moment(frame):
     return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
 
 
+def weight_above(frame, p, heights):
+    """The weight normal to the slope, per unit area, of the grains above each of ``heights``: each
+    grain a slab dp thick centred on it, so that a grain within dp/2 of a height counts in part
+    (half of a row of a lattice that lies on it)."""
+    y, m = frame["x"][:, 1], frame["mass"]
+    weight = math.cos(math.radians(p["theta"])) * p["g"] / (p["columns"] * p["dp"])
+    above = np.clip((y[None, :] - np.asarray(heights, float)[:, None]) / p["dp"] + 0.5, 0.0, 1.0)
+    return above @ m * weight
+
+
 def hydrostatic(frame, p):
-    """The hydrostatic pressure at the centre of each dp-thick layer (measure.layer_means' order): the
-    weight, normal to the slope, of the grains above it and of half the layer's own, per unit area."""
-    y, m, dp = frame["x"][:, 1], frame["mass"], p["dp"]
-    layer = np.floor(y / dp).astype(int)
-    weight = math.cos(math.radians(p["theta"])) * p["g"] / (p["columns"] * dp)
-    return np.array([(m[y > y[layer == k].mean()].sum() + 0.5 * m[layer == k].sum()) * weight
-                     for k in np.unique(layer)])
+    """The hydrostatic pressure at the mean height of each dp-thick layer (measure.layer_means' order):
+    the weight of the grains above it (``weight_above``)."""
+    y, _ = measure.layer_means(frame, p["dp"], frame["x"][:, 1])
+    return weight_above(frame, p, y)
 
 
 def profile_figures(frame, p, material):

@@ -8,7 +8,7 @@ hydrostatic one (the grains' p, and s p, the share the pairs carry: see below). 
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
 bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
 over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
-the layer's centre), the friction mu(I) of the particles over tan(theta), I over I_u, and, where
+the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over tan(theta), I over I_u, and, where
 the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
 pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.incline_measures import hydrostatic, kernel_moment, layer_speeds, profile_figures
+from mpisph.incline_measures import hydrostatic, kernel_moment, layer_speeds, profile_figures, weight_above
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.references import inclined_plane_velocity
@@ -92,7 +92,7 @@ def traction_table(frames, p):
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]
-            weight = m[above].sum() * g / length
+            weight = weight_above(f, p, [Y])[0] / math.cos(theta)
             band = np.abs(x[:, 1] - Y) < dp
             flux = [(m[band] * v[band, c] * v[band, 1]).sum() / (2.0 * dp * length) for c in (0, 1)]
             # in a steady layer the part above feels -(its weight along the slope) and +(its weight

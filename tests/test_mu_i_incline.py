@@ -77,6 +77,8 @@ def test_incline_measures_read_the_uniform_flow_as_one():
         mean, surface = incline_measures.layer_speeds(frame, p, material)
         assert mean == pytest.approx(scale, rel=0.01)
         assert surface == pytest.approx(scale, rel=0.02)
+        assert incline_measures.weight_above(frame, p, [0.0, 0.02]) == pytest.approx(
+            [160 * 2.0e-4 * 9.81 * math.cos(math.radians(25.0)) / (4 * 0.0005), 0.0], rel=1e-12, abs=1e-12)
         l2, grains, carried = incline_measures.profile_figures(frame, p, material)
         assert l2 == pytest.approx(scale - 1.0, abs=1e-12)
         assert grains == pytest.approx(scale, rel=1e-12) and carried == pytest.approx(0.9 * scale, rel=1e-12)
