@@ -809,10 +809,12 @@ def inclined_plane_steady(ranks):
             "of the kernel mean of eps (the particles' jostle biases the modulus of each particle's own). The "
             "as-printed scheme on this layer is 0.58 of the analytical mean speed (docs/INCLINE.md) and the "
             "previous section runs it at 004_'s H = 0.1 m. Figures are means over the frames from 8 s (about "
-            "6 T); the pressures are against the weight of the grains above each layer's centre, as the layer "
-            "dilates above H. An open gap of issue 14: the surface runs ahead (the law reads a pressure 5-10 % "
-            "below the normal stress the pairs carry in the upper half, docs/INCLINE.md); the run at "
-            "H/dp = 40 and the alpha = 0.05 rows of 004_ Fig. 6 are still to come.")
+            "6 T); the pressures are against the weight of the grains above each layer's mean height, each "
+            "grain a slab dp thick (incline_measures.weight_above), as the layer dilates above H. An open gap "
+            "of issue 14: the top spacings shear faster than the analytical profile while the law's friction "
+            "rises above tan(theta) there (docs/INCLINE.md), so the surface runs ahead; the grains' pressure "
+            "sits above the weight by the share 1 - s that the pairs do not carry; the run at H/dp = 40 and "
+            "the alpha = 0.05 rows of 004_ Fig. 6 are still to come.")
     return "Inclined plane at its steady state, H = 0.02 m (004_ Sec. 5.1)", cmd, rows, image, note
 
 
