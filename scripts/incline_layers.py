@@ -8,8 +8,8 @@ hydrostatic one (the grains' p, and s p, the share the pairs carry: see below). 
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
 bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
 over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
-the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over tan(theta), I over I_u, and, where
-the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
+the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
+tan(theta), I over I_u, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
 pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
 viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
@@ -28,7 +28,8 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.incline_measures import hydrostatic, kernel_moment, layer_speeds, profile_figures, weight_above
+from mpisph.incline_measures import (hydrostatic, kernel_moment, layer_speeds, profile_figures,
+                                     weight_above)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.references import inclined_plane_velocity
@@ -88,18 +89,19 @@ def traction_table(frames, p):
             on_i.append((on_p, _stress_pairs(mm, rho, T, dx, dy, c)))
         layer = np.floor(x[:, 1] / dp).astype(int)
         layer -= layer.min()
-        v = f["v"] - np.stack([np.bincount(layer, f["v"][:, c]) / np.bincount(layer) for c in (0, 1)], axis=1)[layer]
+        counts = np.bincount(layer)
+        v = f["v"] - np.stack([np.bincount(layer, f["v"][:, c]) / counts for c in (0, 1)], axis=1)[layer]
+        normal_weight = weight_above(f, p, planes)
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]
-            weight = weight_above(f, p, [Y])[0] / math.cos(theta)
             band = np.abs(x[:, 1] - Y) < dp
             flux = [(m[band] * v[band, c] * v[band, 1]).sum() / (2.0 * dp * length) for c in (0, 1)]
             # in a steady layer the part above feels -(its weight along the slope) and +(its weight
             # normal to the slope) from below
             shear = [-a[across].sum() / length for a in on_i[0]] + [-flux[0]]
             normal = [a[across].sum() / length for a in on_i[1]] + [flux[1]]
-            sums[n] += np.array(shear + normal) / np.repeat([weight * math.sin(theta), weight * math.cos(theta)], 3)
+            sums[n] += np.array(shear + normal) / np.repeat([normal_weight[n] * math.tan(theta), normal_weight[n]], 3)
     return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
 
 
@@ -126,12 +128,13 @@ def main():
     for f in frames[-5:]:
         print(f"{f['t']:6.2f}" + "".join(f" {v:6.3f}" for v in (*layer_speeds(f, p, material),
                                                                  *profile_figures(f, p, material))))
-    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} {'s':>6} "
-          f"{'A_xy':>6}")
+    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} "
+          f"{'s':>6} {'A_xy':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
     if "T_visc" in frames[-1]:
-        print(f"{'':7} {'shear traction / weight along the slope':^34}   {'normal traction / weight normal to it':^34}")
+        print(f"{'':7} {'shear traction / weight along the slope':^34}   "
+              f"{'normal traction / weight normal to it':^34}")
         print(f"{'plane':>7}" + f" {'pressure':>8} {'viscous':>8} {'carried':>8} {'sum':>6}  " * 2)
         for Y, *split in traction_table(frames, p):
             print(f"{1e3 * Y:7.2f}" + "".join(f" {a:8.3f} {b:8.3f} {c:8.3f} {a + b + c:6.3f}  "

@@ -791,15 +791,14 @@ def inclined_plane_steady(ranks):
     fig, ax = _incline_panels(material, theta, H, g)
     layers = [measure.layer_means(f, params["dp"], f["v"][:, 0]) for f in late]
     depth = min(len(y) for y, _ in layers)
-    ax[0].plot(np.mean([u[:depth] for _, u in layers], axis=0), np.mean([y[:depth] for y, _ in layers], axis=0),
-               "o-", ms=3, label=f"mpisph, mean of the frames {span}")
+    height = np.mean([y[:depth] for y, _ in layers], axis=0)
+    ax[0].plot(np.mean([u[:depth] for _, u in layers], axis=0), height, "o-", ms=3,
+               label=f"mpisph, mean of the frames {span}")
     share = [measure.layer_means(f, params["dp"], incline_measures.kernel_moment(f)[0] * f["p"])[1][:depth]
              for f in late]
     weight = [incline_measures.hydrostatic(f, params)[:depth] for f in late]
-    ax[1].plot(np.mean(weight, axis=0), np.mean([y[:depth] for y, _ in layers], axis=0), "k--",
-               label="weight of the grains above")
-    ax[1].plot(np.mean(share, axis=0), np.mean([y[:depth] for y, _ in layers], axis=0), "o-", ms=3,
-               label="s p, the pressure the pairs carry")
+    ax[1].plot(np.mean(weight, axis=0), height, "k--", label="weight of the grains above")
+    ax[1].plot(np.mean(share, axis=0), height, "o-", ms=3, label="s p, the pressure the pairs carry")
     ax[2].plot(diag["t"], speed, label="mpisph")
     _finish_incline_panels(ax, "pressure [Pa]")
     image = save(fig, "inclined_plane_steady.png")

@@ -105,8 +105,7 @@ def kernel_mean_rate(n, start, nbr, xc, rho, mass, kind, strain, k, gamma_dot):
     """gamma_dot_i = sqrt(2 e_i : e_i) of the kernel mean e_i = sum_j V_j eps_j W_ij / sum_j V_j W_ij
     of the strain rate over the moving particles j, i among them, for the moving particles i
     (mu_i.py's option law_strain_rate). Needs eps on the ghosts."""
-    size = strain.shape[1]
-    dim = 2 if size == 3 else 3
+    dim, size = xc.shape[1], strain.shape[1]
     e = np.empty(size)
     for i in range(n):
         if kind[i] != MOVING:
