@@ -32,7 +32,8 @@ def _parser():
     add_set(p)
     p.add_argument("--t-end", type=float, help="simulated end time [s]")
     p.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
-    p.add_argument("--out", help="output directory (default runs/CASE)")
+    p.add_argument("--out", help="output directory (default runs/CASE); a run replaces the frames an earlier "
+                   "run wrote there after its start")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
     return p
@@ -96,14 +97,18 @@ def cmd_plot(out_dir, png_path=None):
     print(f"wrote {deposit_png(out_dir, png_path)}")
 
 
-def _prepare_out_dir(comm, path):
-    """Create the output directory on rank 0 and check it can be written."""
+def _prepare_out_dir(comm, path, start):
+    """Create the output directory on rank 0, check it can be written, and delete the frames an
+    earlier run wrote there after ``start``, the time this run starts from (-inf from the start)."""
+    from .io.frames import drop_frames_after
+
     problem = None
     if comm.rank == 0:
         try:
             os.makedirs(path, exist_ok=True)
             with tempfile.NamedTemporaryFile(dir=path):
                 pass
+            drop_frames_after(path, start)
         except OSError as e:
             problem = f"cannot write output directory {path!r}: {e.strerror or e}"
     problem = comm.bcast(problem, root=0)
@@ -151,7 +156,7 @@ def run(args, comm):
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
-    _prepare_out_dir(comm, out_dir)
+    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"))
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
                                                                   wall_force_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)

@@ -9,8 +9,9 @@ from mpi4py import MPI
 
 from mpisph.errors import InputError
 from mpisph.io.diagnostics import Diagnostics, read_diagnostics
-from mpisph.io.frames import (check_frame, frame_path, list_frames,
+from mpisph.io.frames import (check_frame, drop_frames_after, frame_path, list_frames,
                               read_frame, write_frame)
+from mpisph.io.series import SERIES_NAME, add_to_series
 
 COMM = MPI.COMM_WORLD
 PARAMS = {"case": "dam_break", "h": 0.01, "n": 40, "periodic": [True, False]}
@@ -122,6 +123,28 @@ def test_list_frames(tmp_path):
         write(frame_path(tmp_path, index), fields, 2, time, step)
     (tmp_path / "frame_00009.vtkhdf.part").write_bytes(b"partial")
     assert list_frames(tmp_path) == [frame_path(tmp_path, i) for i in (1, 2, 0)]
+
+
+def test_drop_frames_after(tmp_path):
+    """Frames stored after the time go, with their series entries; earlier frames, the frame at
+    the time itself and files that are not complete frames stay; -inf takes every frame."""
+    import json
+
+    fields = make_fields(2, n=4, n_walls=1)
+    for index, time in enumerate([0.0, 0.1, 0.2, 0.3]):
+        write(frame_path(tmp_path, index), fields, 2, time, index)
+        add_to_series(tmp_path, frame_path(tmp_path, index), time)
+    (tmp_path / "frame_00009.vtkhdf").write_bytes(b"not a frame")
+
+    def series():
+        return [e["name"] for e in json.loads((tmp_path / SERIES_NAME).read_text())["files"]]
+
+    drop_frames_after(tmp_path, 0.1)
+    assert list_frames(tmp_path) == [frame_path(tmp_path, i) for i in (0, 1)]
+    assert series() == ["frame_00000.vtkhdf", "frame_00001.vtkhdf"]
+    drop_frames_after(tmp_path, -np.inf)
+    assert list_frames(tmp_path) == [] and series() == []
+    assert (tmp_path / "frame_00009.vtkhdf").exists()
 
 
 def check_fails(path, message):

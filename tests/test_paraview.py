@@ -54,3 +54,27 @@ def test_series_file_lists_the_frames_with_their_times(tmp_path):
     assert r.returncode == 0, r.stderr
     assert [name for name, _ in entries()] == [name for name, _ in expected]
     assert entries() == [(os.path.basename(f), read_frame(f)["t"]) for f in list_frames(tmp_path)]
+
+
+def test_a_new_run_replaces_the_frames_of_an_earlier_one(tmp_path):
+    """A shorter run from the start into the directory of a longer one leaves only its own frames
+    in the directory and in the series (no stale later frames in ParaView's time axis); a restart
+    from an earlier frame drops the frames after it before writing its own."""
+    import json
+
+    from mpisph.io.series import SERIES_NAME
+
+    def run(t_end, *more):
+        r = mpisph(["dam_break_2d", "--set", "dp=0.1", "--t-end", t_end, "--output-interval", "0.01",
+                    "--out", tmp_path, "--quiet", *more], ranks=1)
+        assert r.returncode == 0, r.stderr
+        names = [e["name"] for e in json.loads((tmp_path / SERIES_NAME).read_text())["files"]]
+        assert names == [os.path.basename(f) for f in list_frames(tmp_path)]
+        return [read_frame(f)["t"] for f in list_frames(tmp_path)]
+
+    assert len(run("0.04")) == 5
+    times = run("0.02")
+    assert len(times) == 3 and max(times) <= 0.02 + 1e-12
+    run("0.04")
+    times = run("0.02", "--restart", list_frames(tmp_path)[1])
+    assert len(times) == 3 and max(times) <= 0.02 + 1e-12

@@ -30,6 +30,7 @@ import numpy as np
 from h5py import h5fd, h5p, h5s
 
 from mpisph.errors import InputError
+from mpisph.io.series import drop_from_series
 
 FRAME_PREFIX = "frame_"
 FRAME_SUFFIX = ".vtkhdf"
@@ -304,3 +305,14 @@ def list_frames(out_dir):
                            f"{FRAME_PREFIX}*{FRAME_SUFFIX}")
     keyed = [(_time_key(p), p) for p in glob.glob(pattern)]
     return [p for k, p in sorted((k, p) for k, p in keyed if k is not None)]
+
+
+def drop_frames_after(out_dir, time):
+    """Delete the frames of ``out_dir`` stored after ``time`` and their entries in its series file
+    (io/series.py): a run that starts at ``time`` there replaces what an earlier run wrote later
+    (``time`` = -inf: every frame, for a run from the start). Files that are not complete frames stay."""
+    late = [p for p in glob.glob(os.path.join(glob.escape(out_dir), f"{FRAME_PREFIX}*{FRAME_SUFFIX}"))
+            if (_time_key(p) or (-np.inf,))[0] > time]
+    for p in late:
+        os.remove(p)
+    drop_from_series(out_dir, [os.path.basename(p) for p in late])
