@@ -7,7 +7,8 @@ import math
 import numpy as np
 
 from . import measure
-from .references import inclined_plane_surface_velocity, inclined_plane_velocity
+from .references import (inclined_plane_mean_velocity_with_viscosity, inclined_plane_surface_velocity,
+                         inclined_plane_velocity, inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
 from .tensors import unpacked
 
 
@@ -19,6 +20,17 @@ def layer_speeds(frame, p, material):
     surface = inclined_plane_surface_velocity(material, p["theta"], p["H"], p["g"])
     top = x[:, 1] > x[:, 1].max() - 0.5 * p["dp"]
     return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
+
+
+def with_artificial_viscosity(p, material):
+    """(nu, mean, surface) of the uniform flow with the shear viscosity nu of the run's alpha (004_
+    Eq. 38; references.pair_viscosity_of_alpha, c0 the sound speed at rest) added to the law: its
+    mean and surface speed over the analytical ones of ``layer_speeds``."""
+    theta, H, g = p["theta"], p["H"], p["g"]
+    nu = pair_viscosity_of_alpha(p["alpha"], p["h_factor"] * p["dp"], material.c0, 2)
+    surface = inclined_plane_surface_velocity(material, theta, H, g)
+    return (nu, inclined_plane_mean_velocity_with_viscosity(material, theta, H, g, nu) / (0.6 * surface),
+            float(inclined_plane_velocity_with_viscosity(material, theta, H, g, nu, 2.0 * H)) / surface)
 
 
 def kernel_moment(frame):

@@ -130,6 +130,63 @@ def inclined_plane_relaxation_time(material, theta_deg, H, g):
     return mean / (g * np.cos(np.radians(theta_deg)) * I_u * slope)
 
 
+def pair_viscosity_of_alpha(alpha, h, c0, dim):
+    """Kinematic shear viscosity nu = alpha h c0 / (2 (D + 2)) [m^2/s] of 004_ Eq. 38's term
+    Pi_ij = -alpha h c0 (v_ij . r_ij) / (rho_bar r^2), applied to every pair: it has the form of
+    the viscous pair term of Eq. 27, 2 (D + 2) eta (v_ij . r_ij) / (rho_i rho_j r^2), which
+    reproduces div(eta grad v) (physics/mu_i.py), with eta / rho = alpha h c0 / (2 (D + 2))."""
+    return alpha * h * c0 / (2.0 * (dim + 2))
+
+
+def _uniform_flow_with_viscosity(material, theta_deg, H, g, nu, samples=4001):
+    """(height, speed, pressure) from the bed up of the steady uniform mu(I) layer with a Newtonian
+    kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``)."""
+    m = material.params
+    tan, cos = np.tan(np.radians(theta_deg)), np.cos(np.radians(theta_deg))
+    I_u, phi_u = material.uniform_flow(theta_deg)
+    p = phi_u * material.rho_s0 * g * cos * H * np.linspace(1.0, 0.0, samples) ** 2  # bed to top, finer at the top
+    lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0: I <= I_u
+    root = np.sqrt(p / material.rho_s0)
+    for _ in range(100):  # bisection: the left side rises with I
+        I = 0.5 * (lo + hi)
+        a = I + m.I_s
+        phi = m.phi_max - (m.phi_max - m.phi_min) * I
+        excess = m.mu_s + (m.mu_2 - m.mu_s) * a / (a + m.I_0) - tan
+        excess += phi * nu * I / (np.maximum(root, 1e-300) * material.d0)
+        lo, hi = np.where(excess < 0.0, I, lo), np.where(excess < 0.0, hi, I)
+    I = 0.5 * (lo + hi)
+    phi = m.phi_max - (m.phi_max - m.phi_min) * I
+    dz_dp = 1.0 / (phi * material.rho_s0 * g * cos)  # height gained per pressure lost upwards
+    du_dp = I * root / material.d0 * dz_dp
+    lost = -np.diff(p)
+    height = np.concatenate(([0.0], np.cumsum(0.5 * (dz_dp[1:] + dz_dp[:-1]) * lost)))
+    speed = np.concatenate(([0.0], np.cumsum(0.5 * (du_dp[1:] + du_dp[:-1]) * lost)))
+    return height, speed, p
+
+
+def inclined_plane_velocity_with_viscosity(material, theta_deg, H, g, nu, z):
+    """Steady uniform velocity u(z) of the mu(I) layer of ``inclined_plane_velocity`` (the same mass
+    per area, phi_u rho_s0 H) with a Newtonian kinematic viscosity ``nu`` added to the law
+    (mpisph's derivation, for 004_ Fig. 6's alpha = 0.05 with ``pair_viscosity_of_alpha``). In the
+    uniform flow the shear stress is p tan(theta) at every depth, so at each pressure p the
+    inertial number solves
+
+        mu(I) + phi(I) nu I sqrt(rho_s0 / p) / d = tan(theta),   phi(I) from Eq. 8,
+
+    then gamma_dot = I sqrt(p / rho_s0) / d and dp/dz = -phi(I) rho_s0 g cos(theta); u(z) is
+    gamma_dot integrated from the bed. nu = 0 gives ``inclined_plane_velocity``. Heights above the
+    layer's top take the top's speed. Grains incompressible, as there."""
+    height, speed, _ = _uniform_flow_with_viscosity(material, theta_deg, H, g, nu)
+    return np.interp(np.asarray(z, dtype=float), height, speed)
+
+
+def inclined_plane_mean_velocity_with_viscosity(material, theta_deg, H, g, nu):
+    """The mass-weighted mean of ``inclined_plane_velocity_with_viscosity`` over the layer (the
+    mean over its pressure, dp being the mass per area times g cos(theta))."""
+    _, speed, p = _uniform_flow_with_viscosity(material, theta_deg, H, g, nu)
+    return float(np.sum(0.5 * (speed[1:] + speed[:-1]) * -np.diff(p)) / p[0])
+
+
 def inclined_plane_pressure(material, theta_deg, H, g, z):
     """Hydrostatic pressure phi_u rho_s0 g cos(theta) (H - z) of the steady layer (004_ Fig. 7)."""
     _, phi_u = material.uniform_flow(theta_deg)

@@ -4,7 +4,8 @@
 
 Prints the mean speed and the surface speed over the analytical ones in each of the last five
 frames, with the profile's L2 error over dp-thick layers and the layers' mean pressure over the
-hydrostatic one (the grains' p, and s p, the share the pairs carry: see below). Then it averages
+hydrostatic one (the grains' p, and s p, the share the pairs carry: see below); with alpha > 0, the
+speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it averages
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
 bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
 over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
@@ -28,8 +29,8 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.incline_measures import (hydrostatic, kernel_moment, layer_speeds, profile_figures,
-                                     weight_above)
+from mpisph.incline_measures import (hydrostatic, kernel_moment, layer_speeds, profile_figures, weight_above,
+                                     with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.references import inclined_plane_velocity
@@ -128,6 +129,13 @@ def main():
     for f in frames[-5:]:
         print(f"{f['t']:6.2f}" + "".join(f" {v:6.3f}" for v in (*layer_speeds(f, p, material),
                                                                  *profile_figures(f, p, material))))
+    if p.get("alpha", 0.0) > 0.0:
+        nu, mean, surface = with_artificial_viscosity(p, material)
+        speeds = np.mean([layer_speeds(f, p, material) for f in frames], axis=0)
+        print(f"alpha = {p['alpha']:g} (Eq. 38) is a shear viscosity nu = alpha h c0 / 8 = {nu:.3g} m^2/s; the "
+              f"uniform flow with it added has {mean:.3f} of the analytical mean speed and {surface:.3f} of the "
+              f"surface speed; the {len(frames)} frames' mean over it {speeds[0] / mean:.3f}, surface "
+              f"{speeds[1] / surface:.3f}")
     print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} "
           f"{'s':>6} {'A_xy':>6}")
     for row in layer_table(frames, p, material):

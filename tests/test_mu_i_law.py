@@ -220,6 +220,27 @@ def test_pair_viscosity_of_eq_27_takes_2_d_plus_2(dim):
 
 
 @pytest.mark.parametrize("dim", [2, 3])
+def test_artificial_viscosity_of_eq_38_is_the_pair_viscosity_of_eq_27(dim):
+    """Eq. 38's term on every pair gives the accelerations of Eq. 27's viscous pair term with
+    eta = rho alpha h c0 / (2 (D + 2)) (references.pair_viscosity_of_alpha), on a sheared lattice."""
+    x, kind, start, nbr, k, inner = lattice(dim, 1.3)
+    n = len(x)
+    rho = np.full(n, 1000.0)
+    mass, zeros = rho * 0.01**dim, np.zeros(n)
+    v = np.zeros((n, dim))
+    v[:, 0] = x[:, 1] ** 2 + 0.3 * x[:, 0] * x[:, 1]
+    alpha, c0 = 0.05, 20.0
+    eta = np.full(n, 1000.0 * references.pair_viscosity_of_alpha(alpha, k.h, c0, dim))
+    by_alpha, by_eta = np.zeros((n, dim)), np.zeros((n, dim))
+    momentum(n, start, nbr, x, v, rho, zeros, zeros, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, alpha, c0,
+             False, 0.0, MEAN_HARMONIC, k.params, by_alpha)
+    momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, c0,
+             False, 2.0 * (dim + 2), MEAN_HARMONIC, k.params, by_eta)
+    assert np.abs(by_alpha[inner, 0]).min() > 1e-3  # about 0.8 of 2 nu, the lattice's share
+    np.testing.assert_allclose(by_alpha, by_eta, rtol=1e-12, atol=1e-12 * np.abs(by_eta).max())
+
+
+@pytest.mark.parametrize("dim", [2, 3])
 def test_corrected_viscous_stress_is_exact_at_the_papers_resolution(dim):
     np.testing.assert_allclose(viscous_acceleration(dim, 1.3, True), 1.0, rtol=1e-9)
 

@@ -50,3 +50,43 @@ def test_earth_pressure_on_a_wall():
     assert references.lateral_earth_force(active, 20.0, 0.0, H, 1.0) == pytest.approx(0.5 / 3 * 20.0 * (H - crack) ** 2)
     assert references.lateral_earth_force(passive, 20.0, 1.0, H, 2.0) == pytest.approx(
         2.0 * (0.5 * 3 * 20 * (H**2 - 1) + 2 * 10 * np.sqrt(3) * (H - 1)))
+
+
+def _beads():
+    from mpisph.materials import MuIGranular
+
+    g, t = references.MU_I_MATERIALS["glass_beads"], references.INCLINED_PLANE_TABLE_2
+    return MuIGranular(rho_s0=t["rho_s0"], d0=g["d"], mu_s=np.tan(np.radians(g["mu_s_deg"])),
+                       mu_2=np.tan(np.radians(g["mu_2_deg"])), I_0=g["I_0"], K_t=t["K_t"], tau_0=t["tau_0"],
+                       m_0=t["m_0"])
+
+
+def test_uniform_flow_with_an_added_viscosity():
+    """Without viscosity the layer is the closed form, its mean 3/5 of the surface speed; with one,
+    the profile keeps the shear stress p tan(theta) at every depth, split between mu(I) p and
+    rho nu du/dz, with p the weight of the grains above at phi(I) of Eq. 8, and the layer is slower."""
+    mat, g, H, theta = _beads(), 9.81, 0.02, 25.0
+    z = np.linspace(0.0, H, 41)
+    u = references.inclined_plane_velocity(mat, theta, H, g, z)
+    np.testing.assert_allclose(references.inclined_plane_velocity_with_viscosity(mat, theta, H, g, 0.0, z), u,
+                               atol=1e-7 * u[-1])
+    assert references.inclined_plane_mean_velocity_with_viscosity(mat, theta, H, g, 0.0) == pytest.approx(
+        0.6 * u[-1], rel=1e-6)
+    nu, m = 1e-4, mat.params
+    z = np.linspace(0.0, 0.95 * H, 2001)  # below the top, which phi(I) > phi_u lowers
+    u = references.inclined_plane_velocity_with_viscosity(mat, theta, H, g, nu, z)
+    rate = np.gradient(u, z)
+    cos = np.cos(np.radians(theta))
+    p_bed = mat.uniform_flow(theta)[1] * mat.rho_s0 * g * cos * H  # the layer's mass is phi_u rho_s0 H
+    p = p_bed * (1.0 - z / H)
+    phi = lambda I: m.phi_max - (m.phi_max - m.phi_min) * I  # noqa: E731
+    for _ in range(5):  # the weight above at phi(I), I from p: a fixed point, converged in a few passes
+        w = phi(rate * mat.d0 / np.sqrt(p / mat.rho_s0)) * mat.rho_s0 * g * cos
+        p = p_bed - np.concatenate(([0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(z))))
+    I = rate * mat.d0 / np.sqrt(p / mat.rho_s0)
+    mu = m.mu_s + (m.mu_2 - m.mu_s) * I / (I + m.I_0)
+    stress = mu * p + phi(I) * mat.rho_s0 * nu * rate
+    inner = slice(10, -10)
+    np.testing.assert_allclose(stress[inner], p[inner] * np.tan(np.radians(theta)), rtol=1e-4)
+    slow = references.inclined_plane_mean_velocity_with_viscosity(mat, theta, H, g, nu)
+    assert 0.3 < slow / references.inclined_plane_mean_velocity_with_viscosity(mat, theta, H, g, 0.0) < 0.9
