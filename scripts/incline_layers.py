@@ -10,7 +10,8 @@ the last ``--frames`` frames of a run of the case inclined_plane over dp-thick l
 bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
 over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
 the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
-tan(theta), I over I_u, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
+tan(theta), I over I_u (means of nonlinear functions of each particle's p, so biased where p
+scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
 pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
 viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
@@ -37,8 +38,9 @@ from mpisph.references import inclined_plane_velocity
 
 
 def layer_table(frames, p, material):
-    """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/tan, I/I_u, s, A_xy) averaged
-    over ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0."""
+    """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/tan, I/I_u, s, A_xy, alignment)
+    averaged over ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0; the
+    alignment is the layer's mean 2 eps_xy over its mean gamma_dot, the law's strain rate."""
     dp, theta, g = p["dp"], math.radians(p["theta"]), p["g"]
     I_u, _ = material.uniform_flow(p["theta"])
     sums = {}
@@ -51,15 +53,15 @@ def layer_table(frames, p, material):
             centre = y[s].mean()
             row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(),
                    (share[s] * f["p"][s]).mean(), p_h, f["friction"][s].mean(), f["inertial_number"][s].mean(),
-                   share[s].mean(), A_xy[s].mean())
+                   share[s].mean(), A_xy[s].mean(), f["gamma_dot"][s].mean())
             sums.setdefault(k, []).append(row)
     rows = []
     for k in sorted(sums):
-        centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy = np.mean(sums[k], axis=0)
+        centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot = np.mean(sums[k], axis=0)
         u_a = inclined_plane_velocity(material, p["theta"], p["H"], g, min(max(centre, 0.0), p["H"]))
         rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
         rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, carried / p_h,
-                     mu / math.tan(theta), I / I_u, share, A_xy))
+                     mu / math.tan(theta), I / I_u, share, A_xy, rate / gamma_dot))
     return rows
 
 
@@ -137,7 +139,7 @@ def main():
               f"surface speed; the {len(frames)} frames' mean over it {speeds[0] / mean:.3f}, surface "
               f"{speeds[1] / surface:.3f}")
     print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} "
-          f"{'s':>6} {'A_xy':>6}")
+          f"{'s':>6} {'A_xy':>6} {'align':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
     if "T_visc" in frames[-1]:
