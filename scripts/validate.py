@@ -37,6 +37,7 @@ RUNS = ROOT / "runs" / "validation"
 
 REUSE = False  # set by --reuse
 STAMP = "validate_run.json"
+PARTIAL_STAMP = "validate_run.started.json"  # a run under way, or interrupted
 
 
 def code_version():
@@ -53,22 +54,35 @@ def code_version():
 def run(name, case, args, ranks, blow_up_ok=False):
     """Frames, diagnostics and the command of one run; with ``blow_up_ok`` a run that stops on a
     blow-up (exit 3) returns what it wrote, its last frame the one at the blow-up. With --reuse, a
-    finished run of the same command, rank count and committed code (its stamp) is read, not re-run."""
+    finished run of the same command, rank count and committed code (its stamp) is read, not re-run,
+    and one that was interrupted (its partial stamp, written at its start) continues from its last
+    frame (a restart gives the bits of an uninterrupted run: tests/test_stop_on_signal.py)."""
     out = RUNS / name
     stamp = {"case": case, "args": [str(a) for a in args], "ranks": ranks, "code": code_version()}
-    done = out / STAMP
-    old = json.loads(done.read_text()) if done.exists() else {}
-    if REUSE and stamp["code"] and {k: old.get(k) for k in stamp} == stamp:
-        returncode = old["returncode"]
+    done, started = out / STAMP, out / PARTIAL_STAMP
+
+    def same(path):
+        return path.exists() and {k: json.loads(path.read_text()).get(k) for k in stamp} == stamp
+
+    if REUSE and stamp["code"] and same(done):
+        returncode = json.loads(done.read_text())["returncode"]
         print(f"  reusing {out} (same command and code)")
     else:
+        restart = []
+        if REUSE and stamp["code"] and same(started) and list_frames(out):
+            restart = ["--restart", list_frames(out)[-1]]
+            print(f"  continuing {out} from {restart[1]} (same command and code)")
         done.unlink(missing_ok=True)
-        r = mpirun_mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks)
+        if stamp["code"]:
+            out.mkdir(parents=True, exist_ok=True)
+            started.write_text(json.dumps(stamp))
+        r = mpirun_mpisph([case, *args, *restart, "--out", out, "--quiet"], ranks=ranks)
         returncode = r.returncode
         if returncode != 0 and not (blow_up_ok and returncode == 3):
             raise SystemExit(r.stderr)
         if stamp["code"]:
             done.write_text(json.dumps(dict(stamp, returncode=returncode)))
+            started.unlink()
     if returncode != 0 and not blow_up_ok:  # a reused run that blew up, read where that is not allowed
         raise SystemExit(f"{case} {' '.join(args)}: blew up (exit 3); its frames are in {out}")
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}"
@@ -1102,7 +1116,8 @@ def main():
                     help="v_f of the oscillating_beam_table and _sph_as runs (the paper's Table 1: all four)")
     ap.add_argument("--reuse", action="store_true",
                     help="read a finished run of the same command, rank count and committed code instead of "
-                         "running it again (runs/validation/NAME/validate_run.json)")
+                         "running it again (runs/validation/NAME/validate_run.json), and continue an interrupted "
+                         "one from its last frame")
     a = ap.parse_args()
     global REUSE
     REUSE = a.reuse

@@ -61,3 +61,31 @@ def test_reuse_reads_only_the_same_command(validate, tmp_path, capsys):
     validate.run("beam", "oscillating_beam", other, 1)
     assert "reusing" not in capsys.readouterr().out
     assert (tmp_path / "beam" / "frame_00000.vtkhdf").stat().st_mtime_ns != first
+
+
+def test_reuse_continues_an_interrupted_run_to_the_same_bits(validate, tmp_path, capsys):
+    """A run whose partial stamp matches (interrupted: no final stamp, its last frames missing)
+    continues from its last frame and ends with the frames of the uninterrupted run, bit for bit."""
+    import json
+
+    import numpy as np
+
+    from mpisph.io.frames import list_frames
+
+    if validate.code_version() is None:
+        pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
+    frames, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    out = tmp_path / "beam"
+    stamp = json.loads((out / validate.STAMP).read_text())
+    del stamp["returncode"]
+    (out / validate.STAMP).unlink()
+    (out / validate.PARTIAL_STAMP).write_text(json.dumps(stamp))
+    Path(list_frames(out)[-1]).unlink()  # the run stopped before its last frame
+    assert len(list_frames(out)) == len(frames) - 1
+    validate.REUSE = True
+    again, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    assert "continuing" in capsys.readouterr().out
+    assert (out / validate.STAMP).exists() and not (out / validate.PARTIAL_STAMP).exists()
+    assert [f["t"] for f in again] == [f["t"] for f in frames]
+    for name in ("x", "v", "rho", "p"):
+        np.testing.assert_array_equal(again[-1][name], frames[-1][name])
