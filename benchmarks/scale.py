@@ -104,7 +104,7 @@ def worker(dp, steps, out):
     rows = comm.gather(dict(owned=owned, ghosts=ghosts, baseline=baseline, setup_peak=setup_peak - baseline,
                             step_peak=step_peak - baseline), root=0)
     if comm.rank == 0:
-        frame = sorted(f for f in os.listdir(out) if f.endswith(".vtkhdf"))[-1]
+        frame = sorted(f for f in os.listdir(out) if f.endswith(".hdf"))[-1]
         print(json.dumps(dict(ranks=comm.size, dp=dp, steps=steps, setup=setup, stepping=stepping, writing=writing,
                               frame_bytes=os.path.getsize(os.path.join(out, frame)), rows=rows,
                               counts=counts.tolist(), moving=moving.tolist(), bin_width=sim.decomp.bin_width,

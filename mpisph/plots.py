@@ -90,7 +90,7 @@ def deposit_png(out_dir, png_path=None):
         raise InputError(f"{out_dir}: no such directory")
     frames = list_frames(out_dir)
     if not frames:
-        raise InputError(f"no complete frames (frame_*.vtkhdf) in {out_dir}")
+        raise InputError(f"no complete frames (frame_*.hdf) in {out_dir}")
     png_path = os.fspath(png_path) if png_path is not None else os.path.join(out_dir, "deposit.png")
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg

@@ -22,7 +22,7 @@ def frames_at(out_dir, times):
     """The frames of the run in ``out_dir`` nearest each of ``times`` (walls included)."""
     paths = list_frames(os.fspath(out_dir))
     if not paths:
-        raise InputError(f"no complete frames (frame_*.vtkhdf) in {out_dir}")
+        raise InputError(f"no complete frames (frame_*.hdf) in {out_dir}")
     stamps = np.array([frame_time(p) for p in paths])
     return [read_frame(paths[int(np.argmin(np.abs(stamps - t)))], walls=True) for t in times]
 

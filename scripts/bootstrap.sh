@@ -14,6 +14,10 @@
 #      rest from PyPI, and this project in editable mode. A stamp file keyed on
 #      a hash of the requirement list + pyproject.toml + the venv's Python
 #      records a finished install; a quick import check confirms it.
+#   4. For the tests only: the readers the frames must open in (tests/test_paraview.py):
+#      Debian's ParaView with pvpython (paraview python3-paraview, without their
+#      recommends; apt-get only when missing) and the oldest VTK mpisph supports,
+#      vtk==9.2.6 with numpy<2, in its own venv .venv/oldest-vtk.
 #
 # The demo runs the granular column collapse (column_collapse_2d with
 # --set dp=0.005, about a minute on 2 ranks) and ends with `python -m mpisph plot`,
@@ -263,10 +267,40 @@ fi
 
 export VIRTUAL_ENV="$VENV"
 export PATH="$VENV/bin:$PATH"
+
+# ---------------------------------------------------------------------------
+# 4. The frame readers the tests open frames with
+# ---------------------------------------------------------------------------
+VIEWER_PKGS=(paraview python3-paraview)
+OLDEST_VTK=(vtk==9.2.6 "numpy<2")
+OLD_VENV="$VENV/oldest-vtk"
+if [ "$MODE" = test ]; then
+    viewers_missing=()
+    for p in "${VIEWER_PKGS[@]}"; do
+        deb_installed "$p" || viewers_missing+=("$p")
+    done
+    if [ ${#viewers_missing[@]} -gt 0 ]; then
+        [ "$(id -u)" -eq 0 ] || die "missing Debian packages: ${viewers_missing[*]} (not root: run 'sudo apt-get install -y --no-install-recommends ${viewers_missing[*]}' first)"
+        log "installing Debian's ParaView for the frame tests: ${viewers_missing[*]}"
+        apt-get update
+        DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${viewers_missing[@]}"
+    else
+        log "Debian's ParaView present ($(pvpython --version 2>/dev/null | head -n 1))"
+    fi
+    if "$OLD_VENV/bin/python" -I -c 'import vtk, sys; sys.exit(vtk.vtkVersion.GetVTKVersion() != "9.2.6")' >/dev/null 2>&1; then
+        log "oldest VTK reader present ($OLD_VENV)"
+    else
+        log "installing the oldest VTK reader into $OLD_VENV: ${OLDEST_VTK[*]}"
+        rm -rf "$OLD_VENV"
+        "$VPY" -m venv "$OLD_VENV"
+        "$OLD_VENV/bin/python" -m pip --disable-pip-version-check install -q "${OLDEST_VTK[@]}"
+    fi
+fi
+
 log "set-up done in $(( $(date +%s) - T_START )) s"
 
 # ---------------------------------------------------------------------------
-# 4. Run
+# 5. Run
 # ---------------------------------------------------------------------------
 case "$MODE" in
     demo)

@@ -26,7 +26,7 @@ def existing_output(tmp_path):
     """An output directory with a file in it that no bad run may touch."""
     out = tmp_path / "out"
     out.mkdir()
-    marker = out / "frame_00000.vtkhdf"
+    marker = out / "frame_00000.hdf"
     marker.write_bytes(b"earlier result")
     return out, marker
 
@@ -90,29 +90,29 @@ def good_frame(tmp_path_factory):
     out = tmp_path_factory.mktemp("good")
     result = mpisph(["elliptical_drop", *TINY, "--out", out], timeout=300)
     assert result.returncode == 0, result.stderr
-    return out / "frame_00001.vtkhdf"
+    return out / "frame_00001.hdf"
 
 
 def test_restart_missing_file(tmp_path, existing_output):
     out, marker = existing_output
-    result = mpisph(["elliptical_drop", "--restart", tmp_path / "nope.vtkhdf", "--out", out], timeout=120)
+    result = mpisph(["elliptical_drop", "--restart", tmp_path / "nope.hdf", "--out", out], timeout=120)
     assert_clean_error(result, "no such file")
     assert marker.read_bytes() == b"earlier result"
 
 
 def test_restart_truncated_file(tmp_path, good_frame, existing_output):
     out, marker = existing_output
-    cut = tmp_path / "cut.vtkhdf"
+    cut = tmp_path / "cut.hdf"
     data = good_frame.read_bytes()
     cut.write_bytes(data[: len(data) // 2])
     result = mpisph(["elliptical_drop", "--restart", cut, "--out", out], ranks=2, timeout=120)
-    assert_clean_error(result, "cut.vtkhdf")
+    assert_clean_error(result, "cut.hdf")
     assert marker.read_bytes() == b"earlier result"
 
 
 def test_restart_foreign_file(tmp_path, existing_output):
     out, marker = existing_output
-    foreign = tmp_path / "foreign.vtkhdf"
+    foreign = tmp_path / "foreign.hdf"
     foreign.write_text("this is not HDF5")
     result = mpisph(["elliptical_drop", "--restart", foreign, "--out", out], timeout=120)
     assert_clean_error(result, "not an HDF5 file")
@@ -136,7 +136,7 @@ def test_blow_up_names_step_time_rank_particle(tmp_path):
     line = result.stderr.strip().splitlines()[-1]
     for word in ("step", "t =", "rank", "particle", "left the domain"):
         assert word in line, line
-    frames = sorted(p.name for p in out.glob("frame_*.vtkhdf"))
+    frames = sorted(p.name for p in out.glob("frame_*.hdf"))
     assert len(frames) >= 2  # the first frame and the last one at the blow-up
     shutil.rmtree(out)
 

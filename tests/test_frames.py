@@ -1,6 +1,7 @@
 """Serial tests of frame files (one MPI rank) and of the diagnostics CSV."""
 
 import shutil
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -14,6 +15,7 @@ from mpisph.io.frames import (check_frame, drop_frames_after, frame_path, list_f
 from mpisph.io.series import SERIES_NAME, add_to_series
 
 COMM = MPI.COMM_WORLD
+DATA = Path(__file__).parent / "data"
 PARAMS = {"case": "dam_break", "h": 0.01, "n": 40, "periodic": [True, False]}
 
 
@@ -75,20 +77,43 @@ def test_empty_frame(tmp_path):
 
 
 def test_vtkhdf_layout(tmp_path):
+    """VTKHDF 1.0 UnstructuredGrid of vertex cells: the layout VTK 9.1 and later read."""
     path = frame_path(tmp_path, 0)
+    assert path.endswith("frame_00000.hdf")
     write(path, make_fields(2, n=5, n_walls=0), 2)
     with h5py.File(path, "r") as f:
         vtk = f["VTKHDF"]
-        assert vtk.attrs["Type"] == b"PolyData"
-        assert vtk.attrs["Type"].dtype == np.dtype("S8")
-        assert list(vtk.attrs["Version"]) == [2, 0]
+        assert vtk.attrs["Type"] == b"UnstructuredGrid"
+        assert vtk.attrs["Type"].dtype == np.dtype("S16")
+        assert list(vtk.attrs["Version"]) == [1, 0]
+        for count in ("NumberOfPoints", "NumberOfCells", "NumberOfConnectivityIds"):
+            assert list(vtk[count]) == [5]
         assert vtk["Points"].shape == (5, 3) and not vtk["Points"][:, 2].any()
-        assert list(vtk["Vertices/Offsets"]) == list(range(6))
-        assert list(vtk["Vertices/Connectivity"]) == list(range(5))
+        assert list(vtk["Offsets"]) == list(range(6))
+        assert list(vtk["Connectivity"]) == list(range(5))
+        assert vtk["Types"].dtype == np.uint8 and list(vtk["Types"]) == [1] * 5
         assert vtk["PointData/v"].shape == (5, 3)
         assert vtk["PointData/sigma"].shape == (5, 9)
-        assert list(vtk["Lines/Offsets"]) == [0]
+        assert "Vertices" not in vtk
         assert f["mpisph"].attrs["complete"] == 1
+        assert f["mpisph"].attrs["format_version"] == 3
+
+
+def test_earlier_format_is_read(tmp_path):
+    """A frame of format version 2 (VTKHDF 2.0 PolyData, ``.vtkhdf``; tests/data, written by the
+    writer before version 3 with make_fields(3, n=6, n_walls=2)) reads as it was written, and
+    list_frames and drop_frames_after see it beside frames of this version."""
+    earlier = tmp_path / "frame_00007.vtkhdf"
+    shutil.copy(DATA / "frame_00007.vtkhdf", earlier)
+    fields = make_fields(3, n=6, n_walls=2)
+    got = read_frame(str(earlier), walls=True)
+    assert got["t"] == 0.25 and got["step"] == 7 and got["params"] == PARAMS
+    for key, want in expected(fields, True).items():
+        assert got[key].dtype == want.dtype and got[key].tobytes() == want.tobytes(), key
+    write(frame_path(tmp_path, 8), fields, 3, time=0.5, step=8)
+    assert list_frames(tmp_path) == [str(earlier), frame_path(tmp_path, 8)]
+    drop_frames_after(tmp_path, 0.3)
+    assert list_frames(tmp_path) == [str(earlier)]
 
 
 def test_vtk_reader(tmp_path):
@@ -107,7 +132,8 @@ def test_vtk_reader(tmp_path):
     out = reader.GetOutput()
     n = len(fields["gid"])
     assert out.GetNumberOfPoints() == n
-    assert out.GetNumberOfVerts() == n
+    assert out.GetNumberOfCells() == n
+    assert {out.GetCellType(i) for i in range(n)} == {vtk.VTK_VERTEX}
     pd = out.GetPointData()
     assert np.array_equal(vtk_to_numpy(pd.GetArray("rho")), fields["rho"])
     assert pd.GetArray("v").GetNumberOfComponents() == 3
@@ -121,7 +147,7 @@ def test_list_frames(tmp_path):
     # File index order differs from time order on purpose.
     for index, (time, step) in enumerate([(0.2, 20), (0.1, 10), (0.2, 15)]):
         write(frame_path(tmp_path, index), fields, 2, time, step)
-    (tmp_path / "frame_00009.vtkhdf.part").write_bytes(b"partial")
+    (tmp_path / "frame_00009.hdf.part").write_bytes(b"partial")
     assert list_frames(tmp_path) == [frame_path(tmp_path, i) for i in (1, 2, 0)]
 
 
@@ -134,17 +160,17 @@ def test_drop_frames_after(tmp_path):
     for index, time in enumerate([0.0, 0.1, 0.2, 0.3]):
         write(frame_path(tmp_path, index), fields, 2, time, index)
         add_to_series(tmp_path, frame_path(tmp_path, index), time)
-    (tmp_path / "frame_00009.vtkhdf").write_bytes(b"not a frame")
+    (tmp_path / "frame_00009.hdf").write_bytes(b"not a frame")
 
     def series():
         return [e["name"] for e in json.loads((tmp_path / SERIES_NAME).read_text())["files"]]
 
     drop_frames_after(tmp_path, 0.1)
     assert list_frames(tmp_path) == [frame_path(tmp_path, i) for i in (0, 1)]
-    assert series() == ["frame_00000.vtkhdf", "frame_00001.vtkhdf"]
+    assert series() == ["frame_00000.hdf", "frame_00001.hdf"]
     drop_frames_after(tmp_path, -np.inf)
     assert list_frames(tmp_path) == [] and series() == []
-    assert (tmp_path / "frame_00009.vtkhdf").exists()
+    assert (tmp_path / "frame_00009.hdf").exists()
 
 
 def check_fails(path, message):
@@ -155,8 +181,8 @@ def check_fails(path, message):
 
 
 def test_check_missing_and_garbage(tmp_path):
-    check_fails(tmp_path / "nope.vtkhdf", "no such file")
-    garbage = tmp_path / "garbage.vtkhdf"
+    check_fails(tmp_path / "nope.hdf", "no such file")
+    garbage = tmp_path / "garbage.hdf"
     garbage.write_bytes(b"this is not hdf5 at all\n" * 100)
     check_fails(garbage, "not an HDF5 file")
 
@@ -165,7 +191,7 @@ def test_check_truncated(tmp_path):
     path = frame_path(tmp_path, 0)
     write(path, make_fields(3, n=2000), 3)
     data = open(path, "rb").read()
-    cut = tmp_path / "cut.vtkhdf"
+    cut = tmp_path / "cut.hdf"
     cut.write_bytes(data[:len(data) // 2])
     check_fails(cut, "truncated")
     with pytest.raises(InputError):
@@ -175,7 +201,7 @@ def test_check_truncated(tmp_path):
 def test_check_incomplete_and_foreign(tmp_path):
     path = frame_path(tmp_path, 0)
     write(path, make_fields(2), 2)
-    incomplete = tmp_path / "incomplete.vtkhdf"
+    incomplete = tmp_path / "incomplete.hdf"
     shutil.copy(path, incomplete)
     with h5py.File(incomplete, "a") as f:
         del f["mpisph"].attrs["complete"]

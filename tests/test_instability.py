@@ -55,6 +55,6 @@ def test_the_clustered_script_finds_the_same_pairs():
 def test_report_command(tmp_path):
     r = mpirun_mpisph(["taylor_green", "--set", "nx=20", "--t-end", "0.1", "--out", tmp_path, "--quiet"])
     assert r.returncode == 0, r.stderr
-    r = mpirun_mpisph(["report", tmp_path / "frame_00001.vtkhdf"])
+    r = mpirun_mpisph(["report", tmp_path / "frame_00001.hdf"])
     assert r.returncode == 0, r.stderr
     assert "clustering 0.000%, inner voids 0.000%, free surface 0.00%, closest pair" in r.stdout

@@ -13,8 +13,8 @@ from mpisph.io.frames import list_frames
 from mpisph.launch import MPI_ENV, ROOT
 from mpirun import signal_when_running
 
-STOPPED = ("mpisph: stopped by SIGUSR1 at step 512, t = 1.25 s; frame runs/x/frame_00003.vtkhdf written; "
-           "continue with: mpirun -n 64 python -m mpisph flume_3d --restart runs/x/frame_00003.vtkhdf --out runs/x")
+STOPPED = ("mpisph: stopped by SIGUSR1 at step 512, t = 1.25 s; frame runs/x/frame_00003.hdf written; "
+           "continue with: mpirun -n 64 python -m mpisph flume_3d --restart runs/x/frame_00003.hdf --out runs/x")
 
 
 def _render(script, env, args=()):
@@ -42,7 +42,7 @@ def test_slurm_job_lines(stopped):
     ]
     if stopped:
         expected.append("+ sbatch --dependency=afterany:1234 --nodes=2 --ntasks=64 --export=ALL "
-                        "jobs/slurm/mpisph.sbatch flume_3d --restart runs/x/frame_00003.vtkhdf")
+                        "jobs/slurm/mpisph.sbatch flume_3d --restart runs/x/frame_00003.hdf")
     assert commands == expected
     script = (ROOT / "jobs" / "slurm" / "mpisph.sbatch").read_text()
     assert "#SBATCH --signal=B:USR1@120" in script
@@ -53,7 +53,7 @@ def test_a_chain_stops_at_chain_max():
            "MPISPH_DRY_RUN_LAST_LINE": STOPPED, "CHAIN_INDEX": "3", "CHAIN_MAX": "3"}
     lines = _render("slurm/mpisph.sbatch", env, ["flume_3d"])
     assert not any(line.startswith("+ sbatch") for line in lines)
-    assert lines[-1] == ("mpisph job: stopped at runs/x/frame_00003.vtkhdf; the chain has reached CHAIN_MAX=3 jobs, "
+    assert lines[-1] == ("mpisph job: stopped at runs/x/frame_00003.hdf; the chain has reached CHAIN_MAX=3 jobs, "
                          "not resubmitting")
 
 
@@ -71,7 +71,7 @@ def test_pbs_job_lines(tmp_path):
         "+ mkdir -p runs/flume_3d-99",
         "+ mpirun -np 4 .venv/bin/python -m mpisph flume_3d --set dp=0.02 --out runs/flume_3d-99",
         "+ qsub -W depend=afterany:99.server -l select=2:ncpus=2:mpiprocs=2 -v CASE=flume_3d,ARGS=--restart "
-        "runs/x/frame_00003.vtkhdf,OUT=runs/flume_3d-99,CHAIN_INDEX=2,CHAIN_MAX=20,SELECT=2:ncpus=2:mpiprocs=2 "
+        "runs/x/frame_00003.hdf,OUT=runs/flume_3d-99,CHAIN_INDEX=2,CHAIN_MAX=20,SELECT=2:ncpus=2:mpiprocs=2 "
         "jobs/pbs/mpisph.pbs",
     ]
 

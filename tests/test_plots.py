@@ -65,7 +65,7 @@ def test_deposit_png_given_path(tmp_path, strain):
 
 
 def test_no_frames(tmp_path):
-    (tmp_path / "frame_00000.vtkhdf.part").write_bytes(b"partial")
+    (tmp_path / "frame_00000.hdf.part").write_bytes(b"partial")
     with pytest.raises(InputError, match="no complete frames") as err:
         deposit_png(tmp_path)
     assert "\n" not in str(err.value)

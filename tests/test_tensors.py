@@ -40,7 +40,7 @@ def test_format_1_frame_with_full_tensors_is_packed_on_restart(tmp_path):
     case = Case(dim=dim, domain=((0.0, 0.0), (1.0, 1.0)), dp=0.1, material=soil, scheme="riemann_granular",
                 bodies=[], gravity=(0.0, -9.81), stabilisers="utvf")
     parts = make_parts(case, {name: p.default for name, p in RUN_PARAMS.items()})
-    path = str(tmp_path / "frame_00001.vtkhdf")
+    path = str(tmp_path / "frame_00001.hdf")
     write_frame(path, MPI.COMM_SELF, frame, time=0.5, step=7, dim=dim, params={})  # tensors stored 3 x 3
     pa, t, step = particles_from_frame(MPI.COMM_SELF, path, parts)
     assert (t, step) == (0.5, 7)

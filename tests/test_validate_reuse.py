@@ -51,16 +51,16 @@ def test_reuse_reads_only_the_same_command(validate, tmp_path, capsys):
     if validate.code_version() is None:
         pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
     frames, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
-    first = (tmp_path / "beam" / "frame_00000.vtkhdf").stat().st_mtime_ns
+    first = (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns
     validate.REUSE = True
     again, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
     assert "reusing" in capsys.readouterr().out
-    assert (tmp_path / "beam" / "frame_00000.vtkhdf").stat().st_mtime_ns == first
+    assert (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns == first
     assert [f["t"] for f in again] == [f["t"] for f in frames]
     other = [*BEAM[:-1], "0.002"]  # another output interval: another command, run again
     validate.run("beam", "oscillating_beam", other, 1)
     assert "reusing" not in capsys.readouterr().out
-    assert (tmp_path / "beam" / "frame_00000.vtkhdf").stat().st_mtime_ns != first
+    assert (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns != first
 
 
 def test_reuse_continues_an_interrupted_run_to_the_same_bits(validate, tmp_path, capsys):

@@ -1,12 +1,16 @@
-"""Output frames: one VTKHDF PolyData file per frame, written collectively.
+"""Output frames: one VTKHDF UnstructuredGrid file per frame, written collectively.
 
 A frame holds the whole global particle state.  Under ``/VTKHDF`` it follows
-the VTKHDF 2.0 PolyData layout (one partition, one vertex cell per particle),
-so ParaView and VTK's ``vtkHDFReader`` open it directly:
+the VTKHDF 1.0 UnstructuredGrid layout (one partition, one vertex cell per
+particle), which VTK's ``vtkHDFReader`` has read since VTK 9.1: ParaView 5.10
+and later open it, Debian 12's ParaView 5.11 among them (PolyData, the layout
+of format versions 1-2, needs VTK 9.3, ParaView 5.12).  ParaView 5.11 knows
+the reader only by the extension ``.hdf``, which later releases still accept:
 
 * ``Points`` (N, 3) float64, z = 0 in 2D;
-* ``Vertices``: ``Connectivity`` = 0..N-1, ``Offsets`` = 0..N;
-  ``Lines``, ``Polygons`` and ``Strips`` are empty;
+* ``Connectivity`` = 0..N-1, ``Offsets`` = 0..N, ``Types`` = VTK_VERTEX (1)
+  for every cell; ``NumberOfPoints``, ``NumberOfCells`` and
+  ``NumberOfConnectivityIds`` hold N;
 * ``PointData/<name>`` for every field but ``x``: 2-component vectors padded
   to 3, symmetric tensors as their 6 components in VTK's order (xx, yy, zz,
   xy, yz, xz; ParaView reads them as symmetric tensors; format 1 stored
@@ -18,7 +22,9 @@ so ParaView and VTK's ``vtkHDFReader`` open it directly:
 The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
 ``format_version``, ``time``, ``step``, ``dim``, ``n_total``, ``params``
 (JSON) and, written last, ``complete`` = 1.  The file is written as
-``<path>.part`` and renamed once every rank has closed it.
+``<path>.part`` and renamed once every rank has closed it.  Frames of format
+versions 1-2 (PolyData, ``frame_NNNNN.vtkhdf``) are still read: restarts,
+``read_frame`` and ``list_frames`` take them.
 """
 
 import glob
@@ -33,16 +39,17 @@ from mpisph.errors import InputError
 from mpisph.io.series import drop_from_series
 
 FRAME_PREFIX = "frame_"
-FRAME_SUFFIX = ".vtkhdf"
+FRAME_SUFFIX = ".hdf"
+EARLIER_SUFFIX = ".vtkhdf"  # format versions 1-2
 FORMAT = "mpisph-frame"
-FORMAT_VERSION = 2  # 2: symmetric tensors packed (tensors.py)
-VTKHDF_VERSION = (2, 0)
+FORMAT_VERSION = 3  # 2: symmetric tensors packed (tensors.py); 3: UnstructuredGrid, .hdf
+VTKHDF_VERSION = (1, 0)
+VTK_VERTEX = 1
 REQUIRED = ("x", "gid", "kind")
-CELL_GROUPS = ("Vertices", "Lines", "Polygons", "Strips")
 
 
 def frame_path(out_dir, index):
-    """Path of frame number ``index`` in ``out_dir`` (``frame_00012.vtkhdf``)."""
+    """Path of frame number ``index`` in ``out_dir`` (``frame_00012.hdf``)."""
     return os.path.join(out_dir, f"{FRAME_PREFIX}{index:05d}{FRAME_SUFFIX}")
 
 
@@ -107,22 +114,15 @@ def _put(dset, start, data, dxpl):
 
 
 def _write_cells(vtk, comm, n_total, off, n, dxpl):
-    """Vertices: one vertex cell per point; other cell groups empty."""
+    """One vertex cell per point: the cell counts, Connectivity, Offsets and Types."""
     root = comm.rank == 0
-    for name in CELL_GROUPS:
-        cells = n_total if name == "Vertices" else 0
-        grp = vtk.create_group(name)
-        for count in ("NumberOfConnectivityIds", "NumberOfCells"):
-            d = grp.create_dataset(count, (1,), np.int64)
-            _put(d, 0, [cells] if root else [], dxpl)
-        conn = grp.create_dataset("Connectivity", (cells,), np.int64)
-        offs = grp.create_dataset("Offsets", (cells + 1,), np.int64)
-        if cells:
-            last = comm.rank == comm.size - 1
-            _put(conn, off, np.arange(off, off + n), dxpl)
-            _put(offs, off, np.arange(off, off + n + last), dxpl)
-        else:
-            _put(offs, 0, [0] if root else [], dxpl)
+    for count in ("NumberOfCells", "NumberOfConnectivityIds"):
+        _put(vtk.create_dataset(count, (1,), np.int64), 0, [n_total] if root else [], dxpl)
+    last = comm.rank == comm.size - 1
+    _put(vtk.create_dataset("Connectivity", (n_total,), np.int64), off, np.arange(off, off + n), dxpl)
+    _put(vtk.create_dataset("Offsets", (n_total + 1,), np.int64), off,
+         np.arange(off, off + n + last), dxpl)
+    _put(vtk.create_dataset("Types", (n_total,), np.uint8), off, np.full(n, VTK_VERTEX, np.uint8), dxpl)
 
 
 def write_frame(path, comm, fields, *, time, step, dim, params):
@@ -156,7 +156,7 @@ def write_frame(path, comm, fields, *, time, step, dim, params):
 
         vtk = f.create_group("VTKHDF")
         vtk.attrs["Version"] = np.array(VTKHDF_VERSION, dtype=np.int64)
-        vtk.attrs["Type"] = np.bytes_("PolyData")  # fixed-length ASCII
+        vtk.attrs["Type"] = np.bytes_("UnstructuredGrid")  # fixed-length ASCII
         _put(vtk.create_dataset("NumberOfPoints", (1,), np.int64), 0,
              [n_total] if root else [], dxpl)
         points = _stored(fields["x"])  # 2D positions padded to 3 components
@@ -221,10 +221,10 @@ def _inspect(path):
                        f"this mpisph ({FORMAT_VERSION})"
             n_total = int(info.attrs["n_total"])
             vtk = f["VTKHDF"]
+            cells = "Connectivity" if version >= 3 else "Vertices/Connectivity"
             lengths = {"NumberOfPoints": int(vtk["NumberOfPoints"][0]),
                        "Points": len(vtk["Points"]),
-                       "Vertices/Connectivity":
-                           len(vtk["Vertices/Connectivity"])}
+                       cells: len(vtk[cells])}
             for name in REQUIRED[1:]:
                 if name not in vtk["PointData"]:
                     return f"dataset PointData/{name} missing"
@@ -299,11 +299,15 @@ def frame_time(path):
     return _time_key(path)[0]
 
 
+def _frame_files(out_dir):
+    """The files of ``out_dir`` named as frames, of this format or the earlier one."""
+    return [p for suffix in (FRAME_SUFFIX, EARLIER_SUFFIX)
+            for p in glob.glob(os.path.join(glob.escape(out_dir), f"{FRAME_PREFIX}*{suffix}"))]
+
+
 def list_frames(out_dir):
     """Complete frames in ``out_dir`` ordered by stored time, then step."""
-    pattern = os.path.join(glob.escape(out_dir),
-                           f"{FRAME_PREFIX}*{FRAME_SUFFIX}")
-    keyed = [(_time_key(p), p) for p in glob.glob(pattern)]
+    keyed = [(_time_key(p), p) for p in _frame_files(out_dir)]
     return [p for k, p in sorted((k, p) for k, p in keyed if k is not None)]
 
 
@@ -311,8 +315,7 @@ def drop_frames_after(out_dir, time):
     """Delete the frames of ``out_dir`` stored after ``time`` and their entries in its series file
     (io/series.py): a run that starts at ``time`` there replaces what an earlier run wrote later
     (``time`` = -inf: every frame, for a run from the start). Files that are not complete frames stay."""
-    late = [p for p in glob.glob(os.path.join(glob.escape(out_dir), f"{FRAME_PREFIX}*{FRAME_SUFFIX}"))
-            if (_time_key(p) or (-np.inf,))[0] > time]
+    late = [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
     for p in late:
         os.remove(p)
     drop_from_series(out_dir, [os.path.basename(p) for p in late])

@@ -1,10 +1,10 @@
-"""``frames.vtkhdf.series``: the frames of a run with their simulated times, in the JSON file-series
+"""``frames.hdf.series``: the frames of a run with their simulated times, in the JSON file-series
 format that ParaView reads (open it instead of the frames to see physical time on the time axis)."""
 
 import json
 import os
 
-SERIES_NAME = "frames.vtkhdf.series"
+SERIES_NAME = "frames.hdf.series"
 
 
 def _read(path):
