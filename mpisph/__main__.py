@@ -88,7 +88,8 @@ def cmd_report(paths):
         m = tensile_instability(frame, lo, periods)
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
-              f"closest pair {m['min_spacing']:.3f} dp")
+              f"closest pair {m['min_spacing']:.3f} dp, {m['fragments']} fragment{'s' * (m['fragments'] > 1)} "
+              f"({100 * m['detached']:.2f}% outside the largest)")
 
 
 def cmd_plot(out_dir, png_path=None):

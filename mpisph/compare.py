@@ -5,7 +5,8 @@ Each run goes to OUT/<stabiliser>/ (OUT defaults to runs/compare_CASE) under ``m
 OUT/compare.md gets a table with, for each, how the run ended and, from its last frame and its
 diagnostics:
 
-- clustering, inner voids and the closest pair over dp (instability.py, walls included);
+- clustering, inner voids, the closest pair over dp and the fragments, with the share of the
+  particles outside the largest (instability.py, walls included);
 - the change of total energy, kinetic plus gravitational, dE = E_end - E_0 in J and as a fraction
   of the energy that moved, max KE + max |PE - PE_0|;
 - for a case without walls, the drift of linear momentum from gravity's impulse, |P_end - P_0 -
@@ -96,7 +97,8 @@ def measures(out, case):
     energy = d["kinetic_energy"] + d["potential_energy"]
     moved = d["kinetic_energy"].max() + np.abs(d["potential_energy"] - d["potential_energy"][0]).max()
     out = {"t": float(last["t"]), "clustering": m["clustering"], "inner_voids": m["inner_voids"],
-           "closest": m["min_spacing"], "dE": float(energy[-1] - energy[0]),
+           "closest": m["min_spacing"], "fragments": m["fragments"], "detached": m["detached"],
+           "dE": float(energy[-1] - energy[0]),
            "dE_rel": float((energy[-1] - energy[0]) / moved) if moved > 0 else 0.0}
     mass = float(d["mass"][0])
     v_ref = np.sqrt(2.0 * d["kinetic_energy"].max() / mass) if mass > 0 else 0.0
@@ -123,14 +125,15 @@ def _cell(row, key, fmt):
 def table(case_name, rows):
     """Markdown lines of the comparison."""
     lines = [f"| stabiliser ({case_name}) | ended | t [s] | clustering | inner voids | closest pair / dp | "
-             f"dE [J] | dE / moved | momentum drift | angular drift | runout [m] |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             f"fragments (outside the largest) | dE [J] | dE / moved | momentum drift | angular drift | runout [m] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, (status, row) in rows.items():
         if row is None:
-            lines.append(f"| {name} | {status} | " + " | ".join(["–"] * 9) + " |")
+            lines.append(f"| {name} | {status} | " + " | ".join(["–"] * 10) + " |")
             continue
         lines.append(f"| {name} | {status} | {row['t']:.4g} | {100 * row['clustering']:.3f} % | "
-                     f"{100 * row['inner_voids']:.3f} % | {row['closest']:.3f} | {row['dE']:.4g} | "
+                     f"{100 * row['inner_voids']:.3f} % | {row['closest']:.3f} | "
+                     f"{row['fragments']} ({100 * row['detached']:.2f} %) | {row['dE']:.4g} | "
                      f"{row['dE_rel']:.3g} | {_cell(row, 'dP', '{:.2e}')} | {_cell(row, 'dL', '{:.2e}')} | "
                      f"{_cell(row, 'runout', '{:.4g}')} |")
     return lines

@@ -438,7 +438,7 @@ def final_over_peak_speed(frames):
 
 
 def cohesive_failure(ranks):
-    tolerance = {"utvf": "<= 0.1% / 0 / -", "tvf": "surface clusters", "none": ">= 10 x utvf clustering"}
+    tolerance = {"utvf": "<= 0.1% / 0 / - / 1", "tvf": "surface clusters", "none": ">= 10 x utvf clustering"}
     dp = 0.04
     runs = {st: run(f"cohesive_failure_2d_{st}", "cohesive_failure_2d", ["--set", f"stabiliser={st}"], ranks)
             for st in ("utvf", "tvf", "none")}
@@ -449,9 +449,12 @@ def cohesive_failure(ranks):
         a.set_xlim(-0.1, 6.0)
         last = list_frames(RUNS / f"cohesive_failure_2d_{st}")[-1]
         m = tensile_instability(read_frame(last, walls=True))
-        rows.append((f"{st}: clustering / inner voids / closest pair at 2 s",
-                     f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}% / {m['min_spacing']:.2f} dp",
-                     "0 / 0 / 1 dp", "-", tolerance[st]))
+        row = (f"{st}: clustering / inner voids / closest pair / fragments (outside the largest) at 2 s",
+               f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}% / {m['min_spacing']:.2f} dp / "
+               f"{m['fragments']} ({100 * m['detached']:.2f}%)", "0 / 0 / 1 dp / 1", "-", tolerance[st])
+        if st == "utvf":
+            row += (m["clustering"] <= 0.001 and m["inner_voids"] == 0.0 and m["fragments"] == 1,)
+        rows.append(row)
         if st == "utvf":
             crack = measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0)
             rows.insert(0, ("crest crack behind the face [m]", f"{crack:.2f}", "1.2-1.5", "-", "[1.0, 1.7]"))
@@ -575,9 +578,9 @@ def oscillating_beam(ranks):
                          f"{at_crossing[label]:.3f}", "1", f"{at_crossing[label] - 1:+.3f}", "-"))
         rows.append((f"{label}: energy at 1 s / initial", f"{energy[-1] / energy[0]:.3f}", "1",
                      f"{energy[-1] / energy[0] - 1:+.3f}", "-"))
-        rows.append((f"{label}: clustering / inner voids / closest pair at 1 s",
-                     f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}% / {m['min_spacing']:.2f} dp",
-                     "0 / 0 / 1 dp", "-", "-"))
+        rows.append((f"{label}: clustering / inner voids / closest pair / fragments (outside the largest) at 1 s",
+                     f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}% / {m['min_spacing']:.2f} dp / "
+                     f"{m['fragments']} ({100 * m['detached']:.2f}%)", "0 / 0 / 1 dp / 1", "-", "-"))
     if "utvf" in at_crossing and sph_as in at_crossing:
         decay = {st: 1.0 - at_crossing[st] for st in ("utvf", sph_as)}
         rows.append(("energy lost by the last upward crossing: SPH-AS / utvf",

@@ -33,7 +33,8 @@ def test_a_cut_with_and_without_utvf_side_by_side(tmp_path):
     for row in rows:
         cells = row.strip("| ").split(" | ")
         assert cells[1] == "done" and float(cells[2]) == pytest.approx(0.1)
-        assert cells[8] == cells[9] == "–"  # a walled, gravity-driven case: no momentum columns
+        assert cells[6].endswith("%)") and int(cells[6].split()[0]) >= 1  # fragments (outside the largest)
+        assert cells[9] == cells[10] == "–"  # a walled, gravity-driven case: no momentum columns
     for name in ("compare_particles.png", "compare_energy.png", "none/diagnostics.csv", "utvf/diagnostics.csv"):
         assert (tmp_path / name).stat().st_size > 0
 
@@ -46,7 +47,7 @@ def test_a_periodic_wall_free_case_reports_its_momentum_drift(tmp_path):
     assert r.returncode == 0, r.stderr
     for row in table_rows(tmp_path / "compare.md"):
         cells = row.strip("| ").split(" | ")
-        assert float(cells[8]) < 1e-12 and cells[9] == "–"
+        assert float(cells[9]) < 1e-12 and cells[10] == "–"
 
 
 @pytest.mark.parametrize("args, message", [

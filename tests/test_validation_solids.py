@@ -68,8 +68,19 @@ def test_beam_first_period_and_energy(tmp_path, v_f):
     energy = diag["kinetic_energy"] + diag["strain_energy"]
     assert np.all(np.abs(energy / energy[0] - 1.0) < 0.02)
     m = tensile_instability(read_frame(list_frames(tmp_path)[-1], walls=True))
-    assert m["clustering"] == 0.0 and m["inner_voids"] == 0.0
+    assert m["clustering"] == 0.0 and m["inner_voids"] == 0.0 and m["fragments"] == 1
     assert m["min_spacing"] > 0.75  # without correction pairs close in to 0.55 dp by t = 0.04 s
+
+
+def test_the_uncorrected_beam_breaks_where_clustering_sees_nothing(tmp_path):
+    """Without a stabiliser the H/dp = 10 beam (v_f = 0.05) breaks off at its clamp by t = 0.6 s: two
+    fragments, the stub at the clamp more than a tenth of the particles, while no pair has come
+    nearer than 0.5 dp (pairs close in to 0.55 dp) and clustering reads 0 (issue 13's item 10)."""
+    run("oscillating_beam", ["--set", "H_over_dp=10", "v_f=0.05", "stabiliser=none", "--t-end", "0.6",
+                             "--output-interval", "0.3"], tmp_path)
+    m = tensile_instability(read_frame(list_frames(tmp_path)[-1], walls=True))
+    assert m["clustering"] == 0.0 and m["min_spacing"] > 0.5
+    assert m["fragments"] == 2 and m["detached"] > 0.1
 
 
 def test_beam_with_eq_22_as_printed_gains_energy(tmp_path):
@@ -94,7 +105,7 @@ def test_cohesive_cut_fails_without_tensile_instability_only_with_utvf(tmp_path)
         m[st] = tensile_instability(read_frame(list_frames(tmp_path / st)[-1], walls=True))
         if st == "utvf":
             assert 1.0 <= measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0) <= 1.7
-    assert m["utvf"]["clustering"] <= 0.001 and m["utvf"]["inner_voids"] == 0.0
+    assert m["utvf"]["clustering"] <= 0.001 and m["utvf"]["inner_voids"] == 0.0 and m["utvf"]["fragments"] == 1
     assert m["none"]["clustering"] >= 10 * max(m["utvf"]["clustering"], 1 / m["utvf"]["n"])
     assert m["tvf"]["clustering"] > m["utvf"]["clustering"] and m["tvf"]["min_spacing"] < 0.5
 
