@@ -23,14 +23,16 @@ Recorded: the force and moment of the soil on the barrier (diagnostics.csv, abou
 its foot), the front (distance along x from the chute's top), the flow top along the centre line
 upstream of the barrier (gauge_depth.csv), and the velocity on a vertical line 0.4 m upstream of
 the barrier (gauge_approach.csv) with the flow top over it (gauge_approach_top.csv), from which
-measure.barrier_coefficient gives the dynamic pressure coefficient alpha = F / (rho v^2 h w)
-(scripts/production.py).
+diagnostics.csv gets the approach speed and depth and the dynamic pressure coefficient
+alpha = F / (rho v^2 h w), w the flume's width, rho the soil's rho0 (barrier_load.py;
+scripts/production.py plots them).
 """
 
 from pathlib import Path
 
 import numpy as np
 
+from mpisph.barrier_load import BarrierLoad
 from mpisph.case import Body, Case, DruckerPrager, Front, Param, Wall, limiter_param
 from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
@@ -101,6 +103,8 @@ def setup(p):
         u_ref=float(np.sqrt(2.0 * p.g * (soil_hi[2] - soil_lo[2]))),
         front=Front(origin=(lo[0], 0.0, 0.0), axes=(0,)),
         wall_forces={"barrier": (b_lo[0], middle, b_lo[2])},
+        barrier_loads=[BarrierLoad("barrier", "approach", "approach_top", width=b_hi[1] - b_lo[1], density=p.rho0,
+                                   bed=b_lo[2])],
         gauges=[SurfaceGauge("depth", stations),
                 Gauge.line("approach", (upstream, middle, 0.5 * p.dp), (upstream, middle, 1.5), 31, fields=("v",)),
                 SurfaceGauge("approach_top", np.array([[upstream, middle]]))],

@@ -129,6 +129,7 @@ def run(args, comm):
     from .parts import make_parts
     from .progress import Progress
     from .solver import Simulation
+    from .barrier_load import barrier_load_columns
     from .wall_forces import wall_force_columns
 
     baseline = resident_bytes()
@@ -159,7 +160,7 @@ def run(args, comm):
                      diagnostics=None, progress=progress, stop=stop)
     _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"))
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
-                                                                  wall_force_columns(case)),
+                                                                  wall_force_columns(case), barrier_load_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)
     if case.gauges:
         sim.gauges = GaugeRecorder(case, particles, out_dir, comm, append=restarted,

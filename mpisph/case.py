@@ -18,6 +18,7 @@ import numpy as np
 from .errors import InputError
 from .kernels import KERNELS
 from .sources import as_points
+from .barrier_load import check_barrier_loads
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
@@ -241,6 +242,7 @@ class Case:
     front: Front | None = None  # recorded in diagnostics.csv when given
     gauges: list = field(default_factory=list)  # gauges.Gauge and gauges.SurfaceGauge, a CSV file each
     wall_forces: dict = field(default_factory=dict)  # wall name -> point of its moment; diagnostics (wall_forces.py)
+    barrier_loads: list = field(default_factory=list)  # barrier_load.BarrierLoad: alpha of a barrier in diagnostics
 
     @property
     def sources(self):
@@ -293,6 +295,7 @@ class Case:
         """Raise InputError for a case that cannot run; note the global ids of the walls whose forces
         are recorded (``wall_gids``)."""
         self.wall_gids = self._wall_gids()
+        check_barrier_loads(self)
         if not self.dp > 0:
             raise InputError(f"spacing dp must be positive, not {self.dp!r}")
         lo, hi = self.domain

@@ -132,14 +132,19 @@ class GaugeRecorder:
             self.files.append(Diagnostics(out_dir, comm, names, append, restart_time=restart_time,
                                           filename=f"gauge_{g.name}.csv"))
 
-    def record(self, sim):
+    def sample(self, sim):
+        """{gauge name: {column: value}} of every gauge for the current state (collective)."""
         pa, n = sim.particles, sim.particles.n_owned
+        out = {}
         for g, f in zip(self.gauges, self.files):
-            if isinstance(g, Gauge):
-                values = self._sample(sim, g, pa, n)
-            else:
-                values = self._tops(sim, g, pa, n)
-            f.record(dict(zip(f.columns, [sim.t, *values])))
+            values = self._sample(sim, g, pa, n) if isinstance(g, Gauge) else self._tops(sim, g, pa, n)
+            out[g.name] = dict(zip(f.columns[1:], values))
+        return out
+
+    def write(self, t, samples):
+        """A row of every gauge's file at time ``t`` from ``sample``'s values."""
+        for g, f in zip(self.gauges, self.files):
+            f.record({"t": t, **samples[g.name]})
 
     def _sample(self, sim, g, pa, n):
         points = np.ascontiguousarray(np.asarray(g.points, float).reshape(-1, pa.dim))

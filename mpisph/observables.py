@@ -7,7 +7,8 @@ its own sums (the strain energy of elastic solids), every probe of the case
 position, a case with a ``Front`` the largest distance of a moving
 particle from its origin (a maximum, exact on any number of ranks), and a case
 with ``wall_forces`` the force and moment on each of those walls
-(wall_forces.py). The last
+(wall_forces.py), and one with ``barrier_loads`` the approach speed and depth and
+the dynamic pressure coefficient of each barrier (barrier_load.py). The last
 columns describe the load balance: the fewest and most moving particles and
 neighbour pairs on a rank in the current configuration, the imbalance of the
 pairs (max / mean - 1, what the rebalance threshold is compared with) and the
@@ -18,6 +19,7 @@ import numpy as np
 from mpi4py import MPI
 from numba import njit
 
+from .barrier_load import barrier_load_columns, barrier_load_values
 from .particles import MOVING
 from .wall_forces import wall_force_columns, wall_force_values
 
@@ -71,8 +73,9 @@ def front_distance(n, kind, x, origin, axes):
     return np.sqrt(far)
 
 
-def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=()):
-    """Columns of diagnostics.csv (``wall_forces``: wall_forces.wall_force_columns)."""
+def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=(), barrier_loads=()):
+    """Columns of diagnostics.csv (``wall_forces``: wall_forces.wall_force_columns; ``barrier_loads``:
+    barrier_load.barrier_load_columns)."""
     ang = ["angular_momentum_z"] if dim == 2 else [f"angular_momentum_{c}" for c in "xyz"]
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
     names += ["potential_energy"]
@@ -81,7 +84,7 @@ def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=()):
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     if front is not None:
         names.append("front")
-    return names + list(wall_forces) + LOAD_COLUMNS
+    return names + list(wall_forces) + list(barrier_loads) + LOAD_COLUMNS
 
 
 LOAD_COLUMNS = ["rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max", "imbalance",
@@ -110,8 +113,9 @@ def _probe_positions(pa, n, gids, dim):
     return out
 
 
-def global_observables(sim):
-    """The values of every column of ``observable_names`` for the current state."""
+def global_observables(sim, gauges):
+    """The values of every column of ``observable_names`` for the current state; ``gauges``: this
+    row's gauge samples (gauges.GaugeRecorder.sample), which the barrier loads read."""
     pa = sim.particles
     n = pa.n_owned
     dim = pa.dim
@@ -129,9 +133,11 @@ def global_observables(sim):
     if front is not None:
         far = front_distance(n, pa.kind, pa.x, np.asarray(front.origin, float), np.asarray(front.axes, np.int64))
         values.append(sim.comm.allreduce(far, op=MPI.MAX))
-    values += wall_force_values(sim) if sim.case.wall_forces else []
+    forces = dict(zip(wall_force_columns(sim.case), wall_force_values(sim) if sim.case.wall_forces else []))
+    values += list(forces.values()) + barrier_load_values(sim.case, forces, gauges)
     values += _load_balance(sim)
-    out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front, wall_force_columns(sim.case)), values))
+    out = dict(zip(observable_names(dim, sim.parts.scheme, probes, front, wall_force_columns(sim.case),
+                                    barrier_load_columns(sim.case)), values))
     for name in ("n", *LOAD_COLUMNS[:4]):  # counts
         out[name] = int(out[name])
     return out

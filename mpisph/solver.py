@@ -223,9 +223,10 @@ class Simulation:
 
     def _record(self):
         """A row of diagnostics.csv and of every gauge's file."""
-        self.diagnostics.record(global_observables(self))
+        samples = self.gauges.sample(self) if self.gauges is not None else {}
+        self.diagnostics.record(global_observables(self, samples))
         if self.gauges is not None:
-            self.gauges.record(self)
+            self.gauges.write(self.t, samples)
 
     def _write_unscheduled_frame(self):
         """A frame of the current state between two output times, numbered after the last regular

@@ -25,7 +25,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mpisph import measure, render  # noqa: E402
+from mpisph import render  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
@@ -225,20 +225,17 @@ def at_the_end(out):
 def flume_3d(ranks, reuse):
     out, cmd, wall, rate, blow_up = run("flume_3d", [], ranks, reuse)
     d = read_diagnostics(out / "diagnostics.csv")
-    approach = read_diagnostics(out / "gauge_approach.csv")
-    top = read_diagnostics(out / "gauge_approach_top.csv")["s0_top"]  # the run-out floor is z = 0
+    # the approach speed and depth, alpha and the force: the run's diagnostics (mpisph/barrier_load.py)
+    v, top = d["approach_speed_barrier"], d["approach_depth_barrier"]
     first = read_frame(list_frames(out)[0], walls=True)
     params = first["params"]
     t_frames, speed = max_speeds(out)
     at_rest = speed[-1] / speed.max()
     moving = d["kinetic_energy"] > 0.01 * d["kinetic_energy"].max()
     imbalance = float(d["imbalance"][moving].max())
-    columns = sorted(k for k in approach if k.endswith("_vx"))
-    sums = np.column_stack([approach[k.replace("_vx", "_kernel_sum")] for k in columns])
-    v = measure.depth_averaged(np.column_stack([approach[k] for k in columns]), sums)
     force = d["force_barrier_x"]
     arriving = np.nan_to_num(v) >= 0.1 * np.nanmax(v)  # alpha describes the impact, not the deposit at rest
-    alpha = np.where(arriving, measure.barrier_coefficient(force, float(params["rho0"]), v, top, 1.0), np.nan)
+    alpha = np.where(arriving, d["alpha_barrier"], np.nan)
     peak = int(np.argmax(force))
     # the engineering coefficient: the peak force over the largest momentum flux of the approaching
     # flow at the gauge before it (rho v^2 h w at its maximum)

@@ -25,11 +25,12 @@ def runs(tmp_path_factory):
     dirs = runs_on(tmp_path_factory, "gauged", CASE, ["--set", "dp=0.025", "--t-end", "0.3", "--output-interval",
                                                       "0.3"])
     return {n: (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
-                read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1])) for n, d in dirs.items()}
+                read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1]),
+                read_diagnostics(d / "gauge_grid.csv")) for n, d in dirs.items()}
 
 
 def test_gauges_sample_still_water(runs):
-    column, surface, diag, frame = runs[1]
+    column, surface, diag, frame, _ = runs[1]
     np.testing.assert_array_equal(column["t"], diag["t"])  # one row per row of diagnostics.csv
     assert column["t"][-1] == frame["t"]
     depth, rho0, g = 0.5, 1000.0, 9.81
@@ -53,8 +54,24 @@ def test_gauges_sample_still_water(runs):
         assert surface[f"s{k}_top"][-1] == pytest.approx(depth, abs=0.025)
 
 
+def test_a_plane_gauge_samples_its_grid(runs):
+    """Gauge.plane over the rectangle x in [0.25, 0.75] m, z in [0.05, 0.35] m of the water, 3 x 4
+    points (the first direction outer): each point's sample is the Shepard interpolation at
+    corner + a u + b v, near hydrostatic at its depth."""
+    *_, frame, grid = runs[1]
+    a, b = np.meshgrid(np.linspace(0.0, 1.0, 3), np.linspace(0.0, 1.0, 4), indexing="ij")
+    points = np.column_stack([0.25 + 0.5 * a.ravel(), 0.05 + 0.3 * b.ravel()])
+    kernel = Kernel("wendland_c2", frame["params"]["h_factor"] * 0.025, 2)
+    wv = kernel.value(np.linalg.norm(points[:, None, :] - frame["x"][None, :, :], axis=2)) * frame["mass"] / frame["rho"]
+    assert [k for k in grid if k.endswith("_p")] == [f"p{i}_p" for i in range(12)]
+    for i, (x, z) in enumerate(points):
+        assert grid[f"p{i}_kernel_sum"][-1] == pytest.approx(wv[i].sum(), rel=1e-12)
+        assert grid[f"p{i}_p"][-1] == pytest.approx(wv[i] @ frame["p"] / wv[i].sum(), rel=1e-12)
+        assert grid[f"p{i}_p"][-1] == pytest.approx(1000.0 * 9.81 * (0.5 - z), rel=0.1)
+
+
 def test_gauges_on_two_ranks(runs):
-    (c1, s1, _, _), (c2, s2, _, _) = runs[1], runs[2]
+    (c1, s1, _, _, _), (c2, s2, _, _, _) = runs[1], runs[2]
     assert list(c1) == list(c2)
     for name in c1:
         np.testing.assert_allclose(c2[name], c1[name], rtol=1e-9, atol=1e-9 * 5000.0, equal_nan=True, err_msg=name)
@@ -63,7 +80,7 @@ def test_gauges_on_two_ranks(runs):
 
 
 def test_force_of_still_water_on_its_tank(runs):
-    (_, _, one, _), (_, _, two, _) = runs[1], runs[2]
+    (_, _, one, _, _), (_, _, two, _, _) = runs[1], runs[2]
     weight = one["mass"][-1] * 9.81
     assert np.all(np.abs(one["force_tank_x"]) < 1e-9 * weight)
     assert one["force_tank_y"][1:].mean() == pytest.approx(-weight, rel=0.01)  # the water oscillates by a few %
