@@ -137,6 +137,23 @@ def test_restart_continues_the_run(runs, case, ranks, tmp_path):
     assert_same_particles(final_state(uninterrupted), final_state(tmp_path), size)
 
 
+def test_the_cuts_follow_the_surge(tmp_path):
+    """The dam break on 2 ranks to 0.6 s: as the water runs along the slab axis the pairs move from
+    one rank to the other; the cuts are moved whenever the imbalance passes the threshold (0.1), at
+    least three times, and it stays under it; with the threshold out of reach the same run's
+    imbalance grows past 0.3."""
+    imbalance = {}
+    for threshold in ("0.1", "1e9"):
+        out = tmp_path / threshold
+        r = mpisph(["dam_break_2d", "--set", "dp=0.05", f"rebalance_threshold={threshold}", "--t-end", "0.6",
+                    "--output-interval", "0.6", "--out", out, "--quiet"], ranks=2)
+        assert r.returncode == 0, r.stderr
+        d = read_diagnostics(out / "diagnostics.csv")
+        imbalance[threshold] = (d["imbalance"], d["rebalances"][-1])
+    assert imbalance["0.1"][1] >= 3 and imbalance["0.1"][0].max() < 0.1
+    assert imbalance["1e9"][1] == 0 and imbalance["1e9"][0].max() > 0.3
+
+
 @pytest.mark.parametrize("case", ["dam_break_2d", "dam_break_3d", "inclined_plane"])
 def test_load_balance_columns(runs, case):
     """diagnostics.csv's load-balance columns: one rank holds everything; on three, the fewest and
