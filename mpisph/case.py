@@ -151,10 +151,11 @@ def scheme_keywords(p, classic_options, riemann_options):
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {
-    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; artificial_stress: "
-                        "Gray, Monaghan & Swift 2001; shifting: Xu et al. 2009; adaptive_kernel: 002_ Sec. 4, "
-                        "with kernel=cubic_spline)",
-                        choices=("none", "tvf", "utvf", "artificial_stress", "shifting", "adaptive_kernel")),
+    "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; tvf_limited: tvf with 001_'s "
+                        "limiter, Eqs. 15-16; artificial_stress: Gray, Monaghan & Swift 2001; shifting: Xu et al. "
+                        "2009; adaptive_kernel: 002_ Sec. 4, with kernel=cubic_spline)",
+                        choices=("none", "tvf", "tvf_limited", "utvf", "artificial_stress", "shifting",
+                                 "adaptive_kernel")),
     **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
     "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "

@@ -7,13 +7,14 @@ diagnostics:
 
 - clustering, inner voids, the closest pair over dp and the fragments, with the share of the
   particles outside the largest (instability.py, walls included);
-- the change of total energy, kinetic plus gravitational, dE = E_end - E_0 in J and as a fraction
-  of the energy that moved, max KE + max |PE - PE_0|;
-- for a case without walls, the drift of linear momentum from gravity's impulse, |P_end - P_0 -
+- the change of total energy, kinetic plus gravitational plus an elastic solid's strain energy,
+  dE = E_end - E_0 in J and as a fraction of the energy that moved, max KE + max |PE - PE_0| (PE
+  with the strain energy);
+- for a case without walls or clamped particles, the drift of linear momentum from gravity's impulse, |P_end - P_0 -
   M g t| / (M v_ref), and with neither gravity nor a periodic axis the drift of angular momentum,
   |L_end - L_0| / (M v_ref R), where v_ref = sqrt(2 max KE / M) and R is the initial radius of
-  gyration (walls exchange momentum with the body and periodic wraps move r x p, so there the
-  columns would say nothing and are left out);
+  gyration (walls and clamps exchange momentum with the body and periodic wraps move r x p, so
+  there the columns would say nothing and are left out);
 - the runout (last ``front`` minus the first) where the case records a front.
 
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
@@ -86,6 +87,11 @@ def run_one(case_name, stabiliser, overrides, ranks, out):
     return "failed", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"exit {r.returncode}"
 
 
+def potential_energy(d):
+    """Gravitational energy plus, for an elastic solid, its strain energy, from diagnostics ``d``."""
+    return d["potential_energy"] + (d["strain_energy"] if "strain_energy" in d else 0.0)
+
+
 def measures(out, case):
     """The table's figures for the run in ``out`` (module docstring)."""
     d = read_diagnostics(Path(out) / "diagnostics.csv")
@@ -94,15 +100,17 @@ def measures(out, case):
     lo, hi = case.domain
     periods = [hi[a] - lo[a] if case.periodic[a] else 0.0 for a in range(case.dim)]
     m = tensile_instability(last, lo, periods)
-    energy = d["kinetic_energy"] + d["potential_energy"]
-    moved = d["kinetic_energy"].max() + np.abs(d["potential_energy"] - d["potential_energy"][0]).max()
+    potential = potential_energy(d)
+    energy = d["kinetic_energy"] + potential
+    moved = d["kinetic_energy"].max() + np.abs(potential - potential[0]).max()
     out = {"t": float(last["t"]), "clustering": m["clustering"], "inner_voids": m["inner_voids"],
            "closest": m["min_spacing"], "fragments": m["fragments"], "detached": m["detached"],
            "dE": float(energy[-1] - energy[0]),
            "dE_rel": float((energy[-1] - energy[0]) / moved) if moved > 0 else 0.0}
     mass = float(d["mass"][0])
     v_ref = np.sqrt(2.0 * d["kinetic_energy"].max() / mass) if mass > 0 else 0.0
-    if not case.walls and v_ref > 0:
+    held = any(b.clamped is not None and np.any(b.clamped) for b in case.bodies)
+    if not case.walls and not held and v_ref > 0:
         dim = case.dim
         p = np.array([d[f"momentum_{c}"] for c in "xyz"[:dim]])
         impulse = mass * np.asarray(case.gravity)[:, None] * (d["t"] - d["t"][0])
@@ -175,13 +183,13 @@ def pictures(runs, colour, out):
     kinetic, total = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
     for name, run in done.items():
         d = read_diagnostics(Path(run) / "diagnostics.csv")
-        e = d["kinetic_energy"] + d["potential_energy"]
+        e = d["kinetic_energy"] + potential_energy(d)
         kinetic.plot(d["t"], d["kinetic_energy"], label=name)
         total.plot(d["t"], e - e[0], label=name)
     kinetic.set_xlabel("t [s]")
     kinetic.set_ylabel("kinetic energy [J]")
     total.set_xlabel("t [s]")
-    total.set_ylabel("E - E_0, kinetic + gravitational [J]")
+    total.set_ylabel("E - E_0, kinetic + gravitational + strain [J]")
     kinetic.legend()
     fig.tight_layout()
     fig.savefig(out / "compare_energy.png", facecolor="white")

@@ -36,6 +36,9 @@ CASES = {
     # an elastic solid with particle shifting: its shear stress carried to the shifted places
     "oscillating_beam": (["--set", "H_over_dp=5", "stabiliser=shifting", "--t-end", "0.012", "--output-interval",
                           "0.006"], 0.6),
+    # 001_'s limited TVF on a solid: the limiter on the inner particles' shift
+    "oscillating_beam tvf_limited": (["--set", "H_over_dp=5", "stabiliser=tvf_limited", "--t-end", "0.012",
+                                      "--output-interval", "0.006"], 0.6),
     # Gray et al.'s classic SPH for an elastic solid with their artificial stress (000_'s SPH-AS)
     "oscillating_beam classic": (["--set", "H_over_dp=5", "scheme=classic_elastic", "stabiliser=artificial_stress",
                                   "--t-end", "0.012", "--output-interval", "0.006"], 0.6),

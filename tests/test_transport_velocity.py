@@ -1,6 +1,7 @@
 """The UTVF shift (mpisph/stabilisers/transport_velocity.py, 000_ Eqs. 30-37) repeated alone on a
 block of particles, its free-surface classes and B recomputed before every shift as in a run.
 
+- The limited shift of 001_ is TVF with the limiter, on inner particles (fluids and solids alike).
 - A perfect lattice is regular, so the shift should leave it where it is: in 2D Eq. 37 as printed
   does, in 3D only with utvf_edge_neighbours=kept (the face particles beside an edge kept in place),
   with either near-surface normal.
@@ -132,3 +133,37 @@ def test_from_a_jittered_3d_block_the_outermost_normals_regularise_further():
     clustered = lambda y: np.mean(closest_pairs(y) < 0.5 * DP)  # noqa: E731  (instability.py's measure)
     own, outermost = clustered(shifted(x, k, 200, True)), clustered(shifted(x, k, 200, True, True))
     assert outermost <= 0.01 and outermost < own
+
+
+@pytest.mark.parametrize("dim, n", [(2, 16), (3, 10)])
+def test_the_limited_shift_is_tvf_with_the_limiter_on_inner_particles(dim, n):
+    """001_ Eq. 16 and 000_ Eq. 30 are one form: on a jittered block, where the limiter is 1
+    (C h^2 |2 g|^2 >= 1), the limited shift of an inner particle is TVF's to round-off, and the
+    limiter scales it by beta where it is below 1; free-surface particles, whose g is the cut
+    support's, are left in place by both. On the perfect lattice (h^2 |2 g|^2 under 5e-4 inside)
+    the limited shift moves nothing."""
+    from mpisph.stabilisers.transport_velocity import LIMITER_C, LIMITER_THRESHOLD, limited_shift
+
+    x, _, _, _, k, _ = lattice(dim, 1.3, n=n, dp=DP)
+    start, nbr, kind, mass, rho, div_r, cls, B, _ = configuration(x, k)
+    still = x.copy()
+    limited_shift(len(x), start, nbr, x, still, mass, rho, kind, cls, k.params)
+    assert np.array_equal(still, x)
+    x = x + np.random.default_rng(2).uniform(-0.1, 0.1, x.shape) * DP
+    start, nbr, kind, mass, rho, div_r, cls, B, _ = configuration(x, k)
+    tvf, limited = x.copy(), x.copy()
+    consistency_shift(len(x), start, nbr, x, tvf, mass, rho, kind, cls, div_r, B, False, False, k.params,
+                      np.empty((0, dim)))
+    limited_shift(len(x), start, nbr, x, limited, mass, rho, kind, cls, k.params)
+    inner = cls == surface.INNER
+    assert inner.any() and (~inner).any()
+    np.testing.assert_array_equal(limited[~inner], x[~inner])
+    np.testing.assert_array_equal(tvf[~inner], x[~inner])
+    g = np.array([kernel_gradient_sum(i, start, nbr, x, mass, rho, k.params)[:dim] for i in range(len(x))])
+    norm2 = k.h**2 * np.sum((2.0 * g) ** 2, axis=1)
+    beta = np.where(norm2 > LIMITER_THRESHOLD, np.minimum(LIMITER_C * norm2, 1.0), 0.0)
+    full = inner & (beta == 1.0)
+    assert full.sum() > 0.5 * inner.sum() and (inner & (beta < 1.0)).any()
+    np.testing.assert_allclose(limited[full] - x[full], tvf[full] - x[full], rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x
+    np.testing.assert_allclose(limited[inner] - x[inner], beta[inner, None] * (tvf[inner] - x[inner]),
+                               rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x

@@ -4,7 +4,7 @@ Three stabilisers, selectable per case (``--set stabiliser=...``), applied
 once per advection step, i.e. after the Verlet update of the previous one
 (000_ Eq. 42):
 
-- ``tvf_limited`` (fluids without a free surface, 001_ Eqs. 14-16);
+- ``tvf_limited``: 001_ Eqs. 14-16 on inner particles only;
 - ``tvf``: 000_ Eq. 30 on inner particles only;
 - ``utvf``: 000_ Eqs. 30-37 on inner and free-surface particles alike.
 
@@ -79,10 +79,15 @@ grad W_ij (001_ Eq. 12) from which Eq. 14 is derived: with p0 = 7 rho0 |v|_ad^2 
 dt_ad = 0.25 h/|v|_ad, 1/2 a dt_ad^2 = -0.44 h^2 sum_j V_j grad W_ij, i.e. 0.2 times this
 g_i (SPHinXsys applies 0.2 h^2 to the same doubled residue, in the limiter as well).
 
-(g points towards the denser side, so the shift is against it.) The shift is
-meant for particles with a full kernel support: it is for flows without a
-free surface; the free-surface variants (TVF on inner particles, UTVF) of
-000_ build on the same gradient.
+(g points towards the denser side, so the shift is against it.) It is one form
+with 000_'s: 0.2 h^2 times the doubled residue is 000_ Eq. 30's 2 alpha h^2 g_i
+(alpha = 0.2), so with beta = 1 the limited shift is the TVF shift, and the
+limiter alone tells them apart. 001_ shifts every particle of a flow without a
+free surface (Taylor-Green, the cavity), where every particle is inner. A
+free-surface particle's support is cut, so its g_i is the truncation's and
+large (h |g| = 0.6 at a flat face) and the shift would pull it into the body;
+the limited shift therefore takes the inner particles only, as TVF does, on
+fluids and solids alike (``tvf_limited`` on a solid is TVF with 001_'s limiter).
 """
 
 import numpy as np
@@ -119,12 +124,13 @@ def kernel_gradient_sum(i, start, nbr, xc, mass, rho, k):
 
 
 @njit(cache=True)
-def limited_shift(n, start, nbr, xc, x, mass, rho, kind, k):
-    """Add the limited transport-velocity shift of 001_ Eq. 16 to the positions ``x``."""
+def limited_shift(n, start, nbr, xc, x, mass, rho, kind, cls, k):
+    """Add the limited transport-velocity shift of 001_ Eq. 16 to the positions ``x`` of the inner
+    particles (free-surface classes ``cls``)."""
     dim = xc.shape[1]
     h2 = k.h * k.h
     for i in range(n):
-        if kind[i] != MOVING:
+        if kind[i] != MOVING or cls[i] != surface.INNER:
             continue
         g0, g1, g2 = kernel_gradient_sum(i, start, nbr, xc, mass, rho, k)
         g0, g1, g2 = 2.0 * g0, 2.0 * g1, 2.0 * g2  # the doubled residue of the module docstring
@@ -223,13 +229,15 @@ def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unif
 
 
 class LimitedTransportVelocity(Stabiliser):
-    """Applies ``limited_shift`` (001_ Eq. 16) once per advection step."""
+    """Applies ``limited_shift`` (001_ Eq. 16) to the inner particles once per advection step."""
 
     name = "tvf_limited"
+    needs_surface = True
 
     def apply(self, ctx):
         pa = ctx.particles
-        limited_shift(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.x, pa.mass, pa.rho, pa.kind, ctx.kernel.params)
+        limited_shift(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface,
+                      ctx.kernel.params)
 
 
 class TransportVelocity(Stabiliser):
