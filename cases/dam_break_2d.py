@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall, density_reinit_param, limiter_param
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, Wall, density_reinit_param,
+                         fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -13,6 +14,9 @@ PARAMS = {
     "wall": Param("no_slip", "-", "tank wall condition", choices=("no_slip", "free_slip")),
     "density_reinit": density_reinit_param("free_surface", ("none", "free_surface")),
     "limiter": limiter_param("separating"),
+    "stabiliser": fluid_stabiliser_param("none"),
+    **SHIFTING_PARAMS,
+    **ARTIFICIAL_STRESS_PARAMS,
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }
@@ -37,5 +41,6 @@ def setup(p):
         walls=[Wall("tank", wall_x, wall_n, slip=p.wall == "free_slip")],
         gravity=(0.0, -p.g),
         density_reinit=p.density_reinit,
+        stabilisers=p.stabiliser,
         u_ref=u,
     )

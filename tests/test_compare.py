@@ -67,7 +67,7 @@ def test_a_clamped_elastic_solid_keeps_its_energy_in_the_table(tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["dam_break_2d", "--stabiliser", "none,utvf"], "has no stabiliser parameter"),
+    (["dam_break_3d", "--stabiliser", "none,utvf"], "has no stabiliser parameter"),
     (["cohesive_failure_2d", "--stabiliser", "none,xsph"], "parameter stabiliser must be one of"),
     (["cohesive_failure_2d", "--stabiliser", "none", "--set", "stabiliser=tvf"], "chosen by --stabiliser"),
     (["cohesive_failure_2d"], "--stabiliser"),
