@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, Wall, density_reinit_param,
-                         fluid_stabiliser_param, limiter_param)
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param, Wall,
+                         density_reinit_param, fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -17,6 +17,7 @@ PARAMS = {
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,
+    **UTVF_PARAMS,
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }

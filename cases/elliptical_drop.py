@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
-                         density_reinit_param, limiter_param)
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
+                         density_reinit_param, fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -16,6 +16,7 @@ PARAMS = {
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,
+    **UTVF_PARAMS,
     "limiter": limiter_param("separating"),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),

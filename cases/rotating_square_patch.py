@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param,
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
                          density_reinit_param, fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box
 
@@ -18,6 +18,7 @@ PARAMS = {
     "stabiliser": fluid_stabiliser_param("none"),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,
+    **UTVF_PARAMS,
     "limiter": limiter_param("separating"),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),

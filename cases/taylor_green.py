@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, Body, Case, Fluid, Param, fluid_stabiliser_param,
-                         density_reinit_param, limiter_param)
+from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
+                         density_reinit_param, fluid_stabiliser_param, limiter_param)
 from mpisph.geometry import box
 
 PARAMS = {
@@ -16,6 +16,7 @@ PARAMS = {
     "stabiliser": fluid_stabiliser_param("tvf_limited", also={"tvf_limited": "001_ Eq. 16"}),
     **SHIFTING_PARAMS,
     **ARTIFICIAL_STRESS_PARAMS,
+    **UTVF_PARAMS,
     "limiter": limiter_param("separating"),
     "jitter": Param(0.2, "dp", "amplitude of a seeded random perturbation of the initial lattice"),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),

@@ -23,7 +23,7 @@ from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: 
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
 from .stabilisers.shifting import COEFFICIENT
-from .stabilisers.transport_velocity import EDGE_NEIGHBOURS, NEAR_SURFACE_NORMALS
+from .stabilisers.transport_velocity import EDGE_NEIGHBOURS, NEAR_SURFACE_NORMALS, SPLASHED
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
@@ -104,7 +104,7 @@ ARTIFICIAL_STRESS_PARAMS = {
 def fluid_stabiliser_param(default, also=None):
     """The parameter naming the stabiliser of a fluid case, with the case's default and, in
     ``also``, {name: source} of the stabilisers the case offers besides the free-surface ones; such
-    a case also exposes SHIFTING_PARAMS and ARTIFICIAL_STRESS_PARAMS."""
+    a case also exposes SHIFTING_PARAMS, ARTIFICIAL_STRESS_PARAMS and UTVF_PARAMS."""
     also = also or {}
     return Param(default, "-", "particle regularisation: tvf on inner particles, utvf on all (000_ Eqs. 30-37); "
                  "shifting (Xu et al. 2009, Khayyer et al. 2017); artificial_stress (Monaghan 2000)"
@@ -148,6 +148,24 @@ def scheme_keywords(p, classic_options, riemann_options):
     return {"scheme": p.scheme, "scheme_options": riemann_options}
 
 
+# The options of UTVF (stabilisers/transport_velocity.py), on every case that offers utvf.
+UTVF_PARAMS = {
+    "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "
+                                  "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
+                                  "or kept in place, so that a perfect lattice stays regular "
+                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS),
+    "utvf_near_surface_normal": Param(NEAR_SURFACE_NORMALS[0], "-", "with stabiliser=utvf, the normal on which "
+                                      "a near-surface particle's shift is projected (000_ Eq. 36): its own B g "
+                                      "(Eq. 35 as printed) or the kernel-weighted mean of the Eq. 35 normals of the "
+                                      "outermost particles within h (stabilisers/transport_velocity.py)",
+                                      choices=NEAR_SURFACE_NORMALS),
+    "utvf_splashed": Param(SPLASHED[0], "-", "with stabiliser=utvf, splashed particles (outermost, no near-surface "
+                           "particle within h): kept in place (000_ Sec. 3.3's text) or shifted along their surface "
+                           "as the other outermost ones, as the authors' code does (stabilisers/transport_velocity.py)",
+                           choices=SPLASHED),
+}
+
+
 # Every solid case (elastic or granular) exposes these, with the paper's integration as default:
 # one time step (000_ Eq. 38) and the UTVF shift after each (Sec. 3.4, Eq. 42).
 SOLID_PARAMS = {
@@ -158,15 +176,7 @@ SOLID_PARAMS = {
                                  "adaptive_kernel")),
     **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
-    "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "
-                                  "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
-                                  "or kept in place, so that a perfect lattice stays regular "
-                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS),
-    "utvf_near_surface_normal": Param(NEAR_SURFACE_NORMALS[0], "-", "with stabiliser=utvf, the normal on which "
-                                      "a near-surface particle's shift is projected (000_ Eq. 36): its own B g "
-                                      "(Eq. 35 as printed) or the kernel-weighted mean of the Eq. 35 normals of the "
-                                      "outermost particles within h (stabilisers/transport_velocity.py)",
-                                      choices=NEAR_SURFACE_NORMALS),
+    **UTVF_PARAMS,
     "time_stepping": Param("single", "-", "single: 000_ Eq. 38, the shift after every step; "
                            "dual: 001_ Eqs. 9-11, the shift once per advection step",
                            choices=("dual", "single")),

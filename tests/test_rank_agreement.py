@@ -58,6 +58,9 @@ CASES = {
     "cube_failure_3d outermost_normals": (["--set", "dp=0.2", "utvf_edge_neighbours=kept",
                                            "utvf_near_surface_normal=outermost", "--t-end", "0.8",
                                            "--output-interval", "0.4"], 5.6),
+    # and the splashed particles shifted as the authors' code does (their classes from the ghosts' div r)
+    "cube_failure_3d splashed_shifted": (["--set", "dp=0.2", "utvf_splashed=shifted", "--t-end", "0.8",
+                                          "--output-interval", "0.4"], 5.6),
     # periodic along the slabs' axis
     "inclined_plane": (["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=16", "--set", "m_0=0.2",
                         "--t-end", "0.01", "--output-interval", "0.005"], 0.04),

@@ -2,6 +2,8 @@
 block of particles, its free-surface classes and B recomputed before every shift as in a run.
 
 - The limited shift of 001_ is TVF with the limiter, on inner particles (fluids and solids alike).
+- A sheet two layers thick is all splashed: kept in place as printed, regularised along itself with
+  utvf_splashed=shifted (the authors' code).
 - A perfect lattice is regular, so the shift should leave it where it is: in 2D Eq. 37 as printed
   does, in 3D only with utvf_edge_neighbours=kept (the face particles beside an edge kept in place),
   with either near-surface normal.
@@ -43,16 +45,16 @@ def configuration(x, k):
     return start, nbr, kind, mass, rho, div_r, cls, B, normals
 
 
-def shifted(x, k, steps, keep_edge_neighbours, outermost_normal=False):
+def shifted(x, k, steps, keep_edge_neighbours, outermost_normal=False, shift_splashed=False):
     """x after ``steps`` UTVF shifts; ``outermost_normal``: near-surface particles projected on the
-    outermost particles' normals."""
+    outermost particles' normals; ``shift_splashed``: splashed particles shifted too."""
     x = x.copy()
     n, dim = x.shape
     for _ in range(steps):
         start, nbr, kind, mass, rho, div_r, cls, B, normals = configuration(x, k)
         before = x.copy()
         consistency_shift(n, start, nbr, before, x, mass, rho, kind, cls, div_r, B, True, keep_edge_neighbours,
-                          k.params, normals if outermost_normal else np.empty((0, dim)))
+                          k.params, normals if outermost_normal else np.empty((0, dim)), shift_splashed)
     return x
 
 
@@ -167,3 +169,23 @@ def test_the_limited_shift_is_tvf_with_the_limiter_on_inner_particles(dim, n):
     np.testing.assert_allclose(limited[full] - x[full], tvf[full] - x[full], rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x
     np.testing.assert_allclose(limited[inner] - x[inner], beta[inner, None] * (tvf[inner] - x[inner]),
                                rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x
+
+
+def test_a_sheet_two_layers_thick_is_splashed_and_shifted_along_itself_only_on_request():
+    """Every particle of a 12 x 12 x 2 sheet is splashed (outermost, no near-surface neighbour within
+    h), most with div r >= 0.6 d. As 000_'s text has it (utvf_splashed=kept) UTVF leaves the sheet
+    jittered as it is; as the authors' code does (shifted) it regularises it along its plane: its
+    clustered pairs open up while no particle leaves its layer by more than a tenth of dp."""
+    x, _, _, _, k, _ = lattice(3, 1.3, n=12, dp=DP)
+    sheet = x[x[:, 2] < 2 * DP]
+    jitter = np.random.default_rng(3).uniform(-0.3, 0.3, sheet.shape) * DP
+    jitter[:, 2] = 0.0
+    sheet = sheet + jitter
+    cls = configuration(sheet, k)[6]
+    assert np.all(cls == surface.SPLASHED)
+    np.testing.assert_array_equal(shifted(sheet, k, 50, False), sheet)
+    regular = shifted(sheet, k, 50, False, shift_splashed=True)
+    assert np.abs(regular[:, 2] - sheet[:, 2]).max() < 0.1 * DP  # B g of a disordered sheet is near its normal
+    clustered = lambda y: np.mean(closest_pairs(y) < 0.5 * DP)  # noqa: E731  (instability.py's measure)
+    assert clustered(sheet) > 0.01 and clustered(regular) == 0.0
+    assert closest_pairs(regular).min() > closest_pairs(sheet).min() + 0.05 * DP

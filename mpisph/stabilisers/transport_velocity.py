@@ -68,6 +68,19 @@ same test harness but not asserted: 1.33 / 0.46 % and 0.46 / 0.12 %).
 Splashed and outermost particles keep Eq. 35. The outermost normals are a field
 (``surface_normal``) so that ghosts carry them; a restart recomputes them.
 
+With the case parameter ``utvf_splashed = "shifted"``, UTVF also shifts the
+splashed particles (outermost, with no near-surface particle within h) with
+div r >= 0.6 d, along their surface (Eq. 36 with their own normal, Eq. 35), as
+the other outermost particles. The default, ``"kept"``, follows 000_ Sec. 3.3's
+text: "when particles are splashed, transport-velocity correction is not
+required". The authors' code does not exclude them: SPHinXsys's UTVF (the class
+TransportVelocityCorrection of tests/2d_examples/test_2d_cohesive_soil_failure/
+cohesive_soil_failure.h, the case of 000_ Sec. 5.2) projects the shift of every
+particle its free-surface indicator marks, splashed ones among them, and zeroes
+it only where div r < 0.6 d. A body thin enough to have no near-surface layer
+(a sheet two particles thick, the tongue of a thin flow) is all splashed, so
+as printed nothing regularises it (tests/test_transport_velocity.py).
+
 The limited variant, once per advection step (001_ Eqs. 14-16):
 
     g_i  = 2 sum_j V_j grad_i W_ij
@@ -106,6 +119,7 @@ COEFFICIENT = 0.2
 ALPHA = 0.2  # 000_ Eq. 30
 NO_SHIFT_DIVERGENCE = 0.6  # times the dimension (000_ Sec. 3.3)
 EDGE_NEIGHBOURS = ("shifted", "kept")  # the choices of utvf_edge_neighbours, the default first
+SPLASHED = ("kept", "shifted")  # the choices of utvf_splashed, the default first
 NEAR_SURFACE_NORMALS = ("own", "outermost")  # the choices of utvf_near_surface_normal, the default first
 
 
@@ -197,17 +211,18 @@ def outermost_mean_normal(i, start, nbr, xc, mass, rho, kind, div_r, normals, k)
 
 @njit(cache=True)
 def consistency_shift(n, start, nbr, xc, x, mass, rho, kind, cls, div_r, B, unified, keep_edge_neighbours, k,
-                      normals):
+                      normals, shift_splashed=False):
     """Add dr of 000_ Eq. 30 (``unified`` false: inner particles only) or Eq. 37 to ``x``; with
     ``keep_edge_neighbours``, not to 3D free-surface particles beside an edge; with ``normals`` of the
     outermost particles (empty: Eq. 35 for every one), a near-surface particle's normal from
-    theirs (module docstring)."""
+    theirs; with ``shift_splashed``, splashed particles as the other outermost ones (module
+    docstring)."""
     dim = xc.shape[1]
     scale = -2.0 * ALPHA * k.h * k.h
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        if cls[i] != surface.INNER and (not unified or cls[i] == surface.SPLASHED
+        if cls[i] != surface.INNER and (not unified or (cls[i] == surface.SPLASHED and not shift_splashed)
                                         or div_r[i] < NO_SHIFT_DIVERGENCE * dim):
             continue
         if (cls[i] != surface.INNER and keep_edge_neighbours and dim == 3
@@ -248,6 +263,7 @@ class TransportVelocity(Stabiliser):
     unified = False
     keep_edge_neighbours = False
     outermost_normal = False
+    shift_splashed = False
 
     def apply(self, ctx):
         pa = ctx.particles
@@ -260,7 +276,7 @@ class TransportVelocity(Stabiliser):
                               ctx.kernel.params, normals)
             ctx.refresh(["surface_normal"])
         consistency_shift(n, ctx.start, ctx.nbr, ctx.xc, pa.x, pa.mass, pa.rho, pa.kind, pa.surface, pa.div_r,
-                          B, self.unified, self.keep_edge_neighbours, ctx.kernel.params, normals)
+                          B, self.unified, self.keep_edge_neighbours, ctx.kernel.params, normals, self.shift_splashed)
 
 
 class UnifiedTransportVelocity(TransportVelocity):
@@ -276,6 +292,7 @@ class UnifiedTransportVelocity(TransportVelocity):
         super().__init__(case, params)
         self.keep_edge_neighbours = params.get("utvf_edge_neighbours", EDGE_NEIGHBOURS[0]) == "kept"
         self.outermost_normal = params.get("utvf_near_surface_normal", NEAR_SURFACE_NORMALS[0]) == "outermost"
+        self.shift_splashed = params.get("utvf_splashed", SPLASHED[0]) == "shifted"
         if self.outermost_normal:
             self.fields = (Field("surface_normal", ("dim",), np.float64,
                                  "unit normal B g / |B g| of an outermost free-surface particle, 0 for the others "
