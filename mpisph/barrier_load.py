@@ -19,8 +19,6 @@ arrives (docs/PRODUCTION_3D.md draws it while v is at least a tenth of its peak)
 
 from dataclasses import dataclass
 
-import numpy as np
-
 from . import measure
 from .errors import InputError
 
@@ -71,10 +69,10 @@ def barrier_load_values(case, forces, gauges):
     out = []
     for load in case.barrier_loads:
         line = gauges[load.approach]
-        points = sorted({int(k[1:k.index("_")]) for k in line if k.startswith("p")})
-        component = f"v{'xyz'[load.axis]}"
-        speed = measure.depth_averaged([[line[f"p{i}_{component}"] for i in points]],
-                                       [[line[f"p{i}_kernel_sum"] for i in points]])[0]
+        sums = [k for k in line if k.endswith("_kernel_sum")]  # one a point, in the points' order
+        component = f"_v{'xyz'[load.axis]}"
+        speed = measure.depth_averaged([[line[k.replace("_kernel_sum", component)] for k in sums]],
+                                       [[line[k] for k in sums]])[0]
         depth = gauges[load.top]["s0_top"] - load.bed
         force = forces[f"force_{load.wall}_{'xyz'[load.axis]}"]
         alpha = measure.barrier_coefficient(force, load.density, speed, depth, load.width)

@@ -15,10 +15,10 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from .barrier_load import check_barrier_loads
 from .errors import InputError
 from .kernels import KERNELS
 from .sources import as_points
-from .barrier_load import check_barrier_loads
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON

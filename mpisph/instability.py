@@ -163,20 +163,22 @@ def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
     h = kernel.h
     order = np.argsort(~moving, kind="stable")  # moving particles first: they get lists
     x, kind, mass, rho, gid = x[order], kind[order], mass[order], rho[order], frame["gid"][order]
+    link = LINK_DISTANCE * dp
+    reach = max(kernel.support, link)  # the support's lists hold the links too
     if any(periodic_lengths):
         x, (kind, mass, rho, gid) = _with_periodic_images(x, [kind, mass, rho, gid], domain_lo,
-                                                           periodic_lengths, kernel.support)
+                                                           periodic_lengths, reach)
     n = len(x)
-    start, nbr = neighbour_lists(x, gid, kind, n_moving, kernel.support, x.min(axis=0))
+    start, nbr = neighbour_lists(x, gid, kind, n_moving, reach, x.min(axis=0))
     div = np.zeros(n)
     position_divergence(n_moving, start, nbr, x, mass, rho, kind, kernel.params, div)
+    originals = np.argsort(gid[:n_moving])
+    owner = originals[np.searchsorted(gid[:n_moving], gid, sorter=originals).clip(0, n_moving - 1)]
+    sizes = fragment_sizes(n_moving, start, nbr, x, kind, owner, link)
     start, nbr = neighbour_lists(x, gid, kind, n_moving, SURROUNDING_REACH * h, x.min(axis=0))
     nearest = np.full(n, np.inf)
     surrounded = np.zeros(n, np.bool_)
     nearest_and_surrounded(n_moving, start, nbr, x, kind, SURROUNDING_SHELL * dp, nearest, surrounded)
-    originals = np.argsort(gid[:n_moving])
-    owner = originals[np.searchsorted(gid[:n_moving], gid, sorter=originals).clip(0, n_moving - 1)]
-    sizes = fragment_sizes(n_moving, start, nbr, x, kind, owner, LINK_DISTANCE * dp)
     low = div[:n_moving] < SURFACE_THRESHOLD * dim
     return {
         "n": n_moving,

@@ -82,7 +82,7 @@ def problems(seen, frame, times=None):
         data = f["VTKHDF/PointData"]
         stored = {k: (1 if d.ndim == 1 else d.shape[1], float(d[()].astype(float).sum())) for k, d in data.items()}
         n = len(f["VTKHDF/Points"])
-    found = []
+    found = [] if seen["type"] == "vtkUnstructuredGrid" else [f"a {seen['type']}"]
     if seen["points"] != n or seen["cells"] != n:
         found.append(f"{seen['points']} points, {seen['cells']} cells of {n}")
     if seen["arrays"] != {k: c for k, (c, _) in stored.items()}:
@@ -121,7 +121,8 @@ def main():
         dim = read_frame(last)["dim"]
         rows.append(f"| `{case}` | {dim}D | {frame_pv.get('points', '-')} | {len(frame_pv.get('arrays', {}))} | "
                     f"{frame_pv.get('reader', '-')} | {', '.join(f'{t:g}' for t in series_pv.get('times', []))} | "
-                    f"{frame_vtk.get('points', '-')} | {'; '.join(issues) or 'every point and array, values as stored'} |")
+                    f"{frame_vtk.get('points', '-')} | "
+                    f"{'; '.join(issues) or 'every point and array, values as stored'} |")
     settings = "; ".join(f"`{c}` {' '.join(s.split())}, to {t} s" for c, (s, t) in sorted(SMALL.items()))
     PAGE.write_text(
         "# Frames in ParaView\n\n"

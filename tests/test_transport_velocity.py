@@ -166,7 +166,8 @@ def test_the_limited_shift_is_tvf_with_the_limiter_on_inner_particles(dim, n):
     beta = np.where(norm2 > LIMITER_THRESHOLD, np.minimum(LIMITER_C * norm2, 1.0), 0.0)
     full = inner & (beta == 1.0)
     assert full.sum() > 0.5 * inner.sum() and (inner & (beta < 1.0)).any()
-    np.testing.assert_allclose(limited[full] - x[full], tvf[full] - x[full], rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x
+    # atol: positions differenced, the ulp of x
+    np.testing.assert_allclose(limited[full] - x[full], tvf[full] - x[full], rtol=1e-12, atol=1e-14 * DP)
     np.testing.assert_allclose(limited[inner] - x[inner], beta[inner, None] * (tvf[inner] - x[inner]),
                                rtol=1e-12, atol=1e-14 * DP)  # positions differenced: ulp of x
 
