@@ -49,7 +49,8 @@ PARAMS = {
     "dp": Param(0.04, "m", "particle spacing (0.04 in the paper)", positive=True),
     # 000_ Table 2, second column; the density by kernel summation, as the authors' code does for soils:
     # evolved by Eq. 16 alone it drifts without bound in the resting deposit (docs/FLUME.md)
-    **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0, density_reinit="free_surface"),
+    **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0, density_reinit="free_surface",
+                  at_rest=False),
     "limiter": limiter_param("separating"),
     "stress_diffusion": stress_diffusion_param(),
     "t_end": Param(4.0, "s", "simulated end time", positive=True),

@@ -3,7 +3,7 @@
 Shared by the granular cases (column collapse, cohesive cut, vertical cut, cube
 failure): the material parameters every such case exposes, the choice of scheme
 (``scheme_params``), and the Case of a block with
-geostatic initial stress inside a tank of no-slip dummy walls: in 2D the
+geostatic initial stress (or another start, parameter initial_stress) inside a tank of no-slip dummy walls: in 2D the
 block [0, L] x [0, H] against the back wall of a floor ``floor`` long, in 3D
 a cube standing in the middle of a square floor with a low rim.
 """
@@ -13,12 +13,17 @@ import numpy as np
 from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params,
                    density_reinit_param, limiter_param, scheme_keywords)
 from .geometry import block, depth_outside, lattice_mismatch, support_layers, walls_around
-from .physics.drucker_prager import STRESS_DIFFUSIONS, geostatic_stress
+from .physics.drucker_prager import INITIAL_STRESSES, STRESS_DIFFUSIONS, geostatic_stress
 
 
-def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
+def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none", at_rest=True):
     """Typed parameters of the soil with the given defaults, plus gravity, the density
-    reinitialisation and the solid scheme's."""
+    reinitialisation and the solid scheme's; ``at_rest``: also the profile of the initial stress
+    of a block at rest (the block cases below)."""
+    profile = {"initial_stress": Param(
+        INITIAL_STRESSES[0], "-", "initial stress of the block: geostatic (at rest), none (gravity loads it at "
+        "t = 0) or inverted (-rho0 g height above the floor, as the authors' SPHinXsys soil cases start; 000_ "
+        "prints none)", choices=INITIAL_STRESSES)} if at_rest else {}
     return {
         "rho0": Param(rho0, "kg/m^3", "bulk density", positive=True),
         "E": Param(E, "Pa", "Young's modulus", positive=True),
@@ -30,6 +35,7 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none"):
         "density_reinit": density_reinit_param(density_reinit, why="000_ evolves the density by Eq. 16 alone, "
                                                "the authors' code sums it for soils (docs/FLUME.md)"),
         **SOLID_PARAMS,
+        **profile,
     }
 
 
@@ -104,7 +110,7 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None)
         material=soil,
         **scheme_choice(p),
         bodies=[Body(name, block(lo, hi, p.dp, f"the {name}"),
-                     stress=lambda x: geostatic_stress(x, top, soil, p.g, k_lateral))],
+                     stress=lambda x: geostatic_stress(x, top, soil, p.g, k_lateral, p.initial_stress, lo[-1]))],
         walls=[Wall("tank", walls_around(tank_lo, tank_hi, p.dp, layers, open_sides=(up,)), slip=slip,
                     distance=depth_outside(tank_lo, tank_hi))],
         gravity=gravity,

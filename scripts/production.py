@@ -1,6 +1,6 @@
 """Run the 3D cases of 000_ Secs. 5.3-5.4 at the paper's spacing and write docs/PRODUCTION_3D.md.
 
-    .venv/bin/python scripts/production.py [--ranks 2] [--only cube_failure_3d|flume_3d ...] [--reuse]
+    .venv/bin/python scripts/production.py [--ranks 2] [--only cube_failure_3d|cube_band_start|flume_3d ...] [--reuse]
 
 Each run's command, wall time and throughput are printed in the page beside its pictures; each
 case runs again with other settings (``VARIANTS``): 000_'s stress diffusion (Feng et al.'s, the
@@ -10,7 +10,8 @@ normals), and, for the cube, the defaults with both UTVF options; their clusteri
 beside the default's. The script exits non-zero, listing
 them, when a figure of the default run misses what issue 15 asks: clustering above 0.1 %
 (tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end at
-least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. ``--reuse``
+least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. The section
+cube_band_start follows where the cube's plastic strain starts with each initial stress. ``--reuse``
 measures the runs already in runs/production/ instead of running them again, and runs only those
 not there yet.
 """
@@ -143,25 +144,37 @@ def edge_share(frame):
     return f"{int(np.sum(beside_an_edge(frame)))} of {int(np.sum(shifted_on_the_surface(frame)))}"
 
 
+ABC = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)  # the normal of the cube's vertical diagonal plane, our plane ABC
+
+
+def strain_by_height(frame, normal=None):
+    """The accumulated plastic strain of the moving particles of ``frame`` in five bands of height
+    (bottom first, each a fifth of the highest particle's height), and its largest value: of the
+    particles within dp/2 of the vertical plane through the origin with ``normal``, or of all."""
+    moving = frame["kind"] == MOVING
+    x, strain = frame["x"][moving], frame["plastic_strain"][moving]
+    if normal is not None:
+        _, _, dist = render.plane_coordinates(x, (0.0, 0.0, 0.0), normal, (0.0, 0.0, 1.0))
+        near = dist < 0.5 * float(frame["params"]["dp"])
+        x, strain = x[near], strain[near]
+    band = np.minimum((5.0 * x[:, 2] / x[:, 2].max()).astype(int), 4)
+    return [strain[band == k] for k in range(5)], float(strain.max())
+
+
 def cube_failure_3d(ranks, reuse):
     out, cmd, wall, rate, blow_up = run("cube_failure_3d", [], ranks, reuse)
     rows = instability_rows(out, (0.5, 1.0))
     variants = variant_runs("cube_failure_3d", ranks, reuse, (0.5, 1.0))
     snap = render.snapshots_png(out, (0.0, 0.5, 1.0), IMG / "cube_failure_3d_speed.png", view=(25.0, -50.0),
                                 title="cube_failure_3d: speed")
-    diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
-    cut = render.slice_png(out, (0.5, 1.0), IMG / "cube_failure_3d_abc.png", (0.0, 0.0, 0.0), diagonal,
+    cut = render.slice_png(out, (0.5, 1.0), IMG / "cube_failure_3d_abc.png", (0.0, 0.0, 0.0), ABC,
                            (0.0, 0.0, 1.0), field="plastic_strain", label="accumulated deviatoric plastic strain",
                            title="cube_failure_3d: the diagonal plane ABC")
     bands = []
     for f in render.frames_at(out, (0.5, 1.0)):
-        moving = f["kind"] == MOVING
-        a, b, dist = render.plane_coordinates(f["x"][moving], (0.0, 0.0, 0.0), diagonal, (0.0, 0.0, 1.0))
-        near = dist < 0.5 * float(f["params"]["dp"])
-        strain, height = f["plastic_strain"][moving][near], b[near]
-        top, foot = height > 0.8 * height.max(), height < 0.2 * height.max()
-        bands.append(f"t = {f['t']:.1f} s: {strain[top].mean():.2f} in the top fifth of the cut, "
-                     f"{strain[foot].mean():.2f} in the bottom fifth, {strain.max():.2f} at most")
+        fifths, largest = strain_by_height(f, ABC)
+        bands.append(f"t = {f['t']:.1f} s: {fifths[-1].mean():.2f} in the top fifth of the cut, "
+                     f"{fifths[0].mean():.2f} in the bottom fifth, {largest:.2f} at most")
     misses = [f"cube_failure_3d: clustering {100 * c:.3f} % at t = {t:.2f} s (at most 0.1 %)"
               for t, c, _, _ in rows if c > 0.001] + ([f"cube_failure_3d: {blow_up}"] if blow_up else [])
     n = len(read_frame(list_frames(out)[0])["x"])
@@ -189,7 +202,8 @@ def cube_failure_3d(ranks, reuse):
         "",
         "The plane ABC: the paper draws it in Fig. 22; we take the vertical plane through the cube's "
         "diagonal (through two opposite vertical edges), the particles within dp/2 of it. 000_ Fig. 24 shows the "
-        "shear band start at the top of the column and run down to its foot between 0.5 s and 1 s. The mean "
+        "shear band start at the top of the column and run down to its foot between 0.5 s and 1 s (the next section "
+        "tries other initial stresses). The mean "
         "accumulated deviatoric plastic strain in the cut: " + "; ".join(bands) + ".",
         "",
         f"![plane ABC]({Path(cut).relative_to(DOCS)})",
@@ -317,7 +331,56 @@ def flume_3d(ranks, reuse):
     return text, misses
 
 
-RUNNERS = {"cube_failure_3d": cube_failure_3d, "flume_3d": flume_3d}
+# the initial stresses the band's start is tried with (physics/drucker_prager.py's geostatic_stress)
+STARTS = {"geostatic": "geostatic, at rest (the default)", "none": "none, loaded by gravity at t = 0",
+          "inverted": "inverted, as the authors' SPHinXsys soil cases start"}
+EARLY = (0.1, 0.2, 0.3, 0.5)  # the times the band's start is followed at [s]
+
+
+def cube_band_start(ranks, reuse):
+    """Where the cube's plastic strain starts, with each initial stress of ``STARTS``, at dp = 0.08 m:
+    a row per start and time, the share of yielded particles (plastic strain > 0.01) in each fifth of
+    the height, over the whole cube and over the plane ABC."""
+    rows, cmds, top_first, first = [], [], [], []
+    for start, label in STARTS.items():
+        args = ["--set", "dp=0.08", f"initial_stress={start}", "--t-end", str(EARLY[-1]), "--output-interval", "0.05"]
+        out, cmd, _, _, blow_up = run("cube_failure_3d", args, ranks, reuse, name=f"cube_band_start_{start}")
+        cmds.append(f"`{cmd}`{stopped(blow_up)}")
+        for k, f in enumerate(render.frames_at(out, EARLY)):
+            shares = [[np.mean(b > 0.01) for b in strain_by_height(f, normal)[0]] for normal in (None, ABC)]
+            rows.append(f"| {label} | {f['t']:.2f} | " + " | ".join(" / ".join(f"{v:.2f}" for v in s) for s in shares)
+                        + " |")
+            if shares[0][-1] > shares[0][0] and label not in top_first:
+                top_first.append(label)
+            if k == 0:
+                first.append(f"{start} {shares[0][0]:.2f} / {shares[0][-1]:.2f}")
+    verdict = (f"At t = {EARLY[0]} s, the bottom fifth's share over the top fifth's, whole cube: " + "; ".join(first)
+               + ". " + ("With no start does the top fifth yield before the bottom fifth: the band's start at the "
+                         "foot is not the initial stress's doing." if not top_first else
+                         "The top fifth yields before the bottom fifth with: " + "; ".join(top_first) + "."))
+    text = [
+        "## Where the cube's plastic strain starts (000_ Fig. 24)",
+        "",
+        "000_ Fig. 24 shows the shear band on the plane ABC start at the top of the cube and run down to its foot; "
+        "in the runs above it starts at the foot. 000_ does not print the initial stress. The default is at "
+        "rest: sigma_v = -rho0 g depth, sigma_h = (1 - sin phi) sigma_v. The authors' SPHinXsys soil cases "
+        "start from sigma_yy = -rho0 g y, zero at the floor and largest at the top (for example "
+        "tests/2d_examples/test_2d_cohesive_soil_failure), so the cube is run from that start, from no stress "
+        "at all, and from the default, at dp = 0.08 m (15 625 particles): "
+        + "; ".join(cmds) + ". A row per start and time: the share of particles whose accumulated "
+        "plastic strain exceeds 0.01, in each fifth of the height from the floor up (bottom / ... / top), over "
+        "the whole cube and over the plane ABC (within dp/2 of it).",
+        "",
+        "| initial stress | t [s] | whole cube, bottom to top | plane ABC, bottom to top |",
+        "|---|---|---|---|",
+        *rows,
+        "",
+        verdict,
+    ]
+    return text, []
+
+
+RUNNERS = {"cube_failure_3d": cube_failure_3d, "cube_band_start": cube_band_start, "flume_3d": flume_3d}
 
 
 def main():

@@ -176,6 +176,19 @@ def test_material_constants():
     assert sig[0, 0] == sig[2, 2] == pytest.approx((1 - math.sin(math.radians(25))) * sig[1, 1])
 
 
+def test_initial_stress_profiles():
+    """The other starts of a soil block on a floor at y = 0.2, 2 m high: none at all, and the
+    inverted profile of the authors' code, zero at the floor and rho0 g H at the top."""
+    m = soil()
+    x = np.array([[0.0, 0.2], [0.0, 1.2], [0.0, 2.2]])
+    assert not geostatic_stress(x, 2.2, m, 9.8, profile="none").any()
+    inverted = geostatic_stress(x, 2.2, m, 9.8, profile="inverted", base=0.2)
+    at_rest = geostatic_stress(x, 2.2, m, 9.8)
+    np.testing.assert_allclose(inverted[:, 1, 1], [0.0, -1850 * 9.8, -1850 * 9.8 * 2.0])
+    np.testing.assert_allclose(inverted, at_rest[::-1])  # the geostatic column turned upside down
+    assert inverted[2, 0, 0] == inverted[2, 2, 2] == pytest.approx(m.k0 * inverted[2, 1, 1])
+
+
 def test_a_free_slip_wall_exerts_no_shear_traction():
     """A particle in pure shear (s_xy only) dp/2 above a floor of three wall rows (normal y): with
     a free-slip floor its wall partners, mirror images with s_xy reversed, add nothing along x; a
