@@ -1,17 +1,19 @@
 """The adaptive B-spline kernel with pressure zones (002_ Sec. 4).
 
 Each particle's kernel is the cubic B-spline of kernels.py with its own knot
-a (002_ Eq. 31, b = 2): the peak of |W'| sits at r = a b h / (a + b), and
-Swegle's criterion makes an interaction stable in tension beyond that peak and
-stable in compression inside it. Once per configuration, before any pair sum
+a (002_ Eq. 31, b = 2): the peak of |W'| sits at r = a b h / (a + b). Beyond
+it W'' > 0, inside it W'' < 0, and Swegle's criterion (unstable where
+sigma W'' > 0, tension positive) makes an interaction stable in compression
+beyond that peak (002_'s zone II) and stable in tension inside it (zone I).
+Once per configuration, before any pair sum
 (``prepare``), the knot of each moving particle i follows from the pressures of
 its immediate neighbours (Sec. 4.3), the material particles within r_i, the
 estimated distance of the farthest immediate neighbour:
 
 - all of them in compression (p_j > 0): a = 0.2, so that the immediate
-  neighbours lie inside the peak;
+  neighbours lie beyond the peak (at 0.18 h);
 - otherwise (one of them in tension): a = b r_i / (b h - r_i), which puts the
-  peak at r_i, so that they all lie beyond it; at most b (r_i >= b h / 2).
+  peak at r_i, so that they all lie inside it; at most b (r_i >= b h / 2).
 
 Wall (and clamped) particles keep a = 1 (the cubic spline): a wall's pressure
 is a boundary value, not a state of the material. r_i comes from the deformation of the
