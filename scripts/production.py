@@ -27,6 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from mpisph import render  # noqa: E402
+from mpisph.case import DruckerPrager  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
@@ -337,16 +338,28 @@ STARTS = {"geostatic": "geostatic, at rest (the default)", "none": "none, loaded
 EARLY = (0.1, 0.2, 0.3, 0.5)  # the times the band's start is followed at [s]
 
 
+def yield_depth(params, lateral):
+    """The depth below a level top at which a column at rest, sigma_v = -rho0 g z and the lateral
+    principal stresses ``lateral`` times sigma_v, reaches the Drucker-Prager surface alpha_phi I1 +
+    sqrt(J2) = k_c (return_mapping's) of the soil of the run ``params``."""
+    soil = DruckerPrager(rho0=params["rho0"], E=params["E"], nu=params["nu"], cohesion=params["cohesion"],
+                         phi=params["phi"], psi=params["psi"])
+    s = np.array([*lateral, 1.0])  # principal stresses over sigma_v
+    sqrt_j2 = np.sqrt(((s[0] - s[1]) ** 2 + (s[1] - s[2]) ** 2 + (s[2] - s[0]) ** 2) / 6.0)
+    return soil.k_c / ((sqrt_j2 - soil.alpha_phi * s.sum()) * soil.rho0 * params["g"])
+
+
 def cube_band_start(ranks, reuse):
     """Where the cube's plastic strain starts, with each initial stress of ``STARTS``, at dp = 0.08 m:
     a row per start and time, the share of yielded particles (plastic strain > 0.01) in each fifth of
     the height, over the whole cube and over the plane ABC."""
-    rows, cmds, top_first, first = [], [], [], []
+    rows, cmds, top_first, first, params = [], [], [], [], None
     for start, label in STARTS.items():
         args = ["--set", "dp=0.08", f"initial_stress={start}", "--t-end", str(EARLY[-1]), "--output-interval", "0.05"]
         out, cmd, _, _, blow_up = run("cube_failure_3d", args, ranks, reuse, name=f"cube_band_start_{start}")
         cmds.append(f"`{cmd}`{stopped(blow_up)}")
         for k, f in enumerate(render.frames_at(out, EARLY)):
+            params = f["params"]
             shares = [[np.mean(b > 0.01) for b in strain_by_height(f, normal)[0]] for normal in (None, ABC)]
             rows.append(f"| {label} | {f['t']:.2f} | " + " | ".join(" / ".join(f"{v:.2f}" for v in s) for s in shares)
                         + " |")
@@ -354,6 +367,15 @@ def cube_band_start(ranks, reuse):
                 top_first.append(label)
             if k == 0:
                 first.append(f"{start} {shares[0][0]:.2f} / {shares[0][-1]:.2f}")
+    k0 = DruckerPrager(rho0=1.0, E=1.0, nu=0.3, phi=params["phi"]).k0
+    face, edge = yield_depth(params, (0.0, k0)), yield_depth(params, (0.0, 0.0))
+    mechanics = (f"At rest the soil meets the Drucker-Prager surface (alpha_phi I1 + sqrt(J2) = k_c) on a free face, "
+                 f"where the stress across the face is zero and the one along it (1 - sin phi) sigma_v, below "
+                 f"{face:.2f} m from the top. On a vertical edge, both lateral stresses zero, it does so below "
+                 f"{edge:.2f} m (scripts/production.py's yield_depth). Of a {params['edge']:g} m cube the foot "
+                 "yields first and the top last wherever the lateral stress relaxes: near the top the stress "
+                 "vanishes and alpha_phi I1 + sqrt(J2) - k_c tends to -k_c, so the top yields first only "
+                 "under a tension.")
     verdict = (f"At t = {EARLY[0]} s, the bottom fifth's share over the top fifth's, whole cube: " + "; ".join(first)
                + ". " + ("With no start does the top fifth yield before the bottom fifth: the band's start at the "
                          "foot is not the initial stress's doing." if not top_first else
@@ -376,6 +398,8 @@ def cube_band_start(ranks, reuse):
         *rows,
         "",
         verdict,
+        "",
+        mechanics,
     ]
     return text, []
 

@@ -13,6 +13,7 @@ from mpisph.particles import MOVING, WALL, WALL_SLIP
 from mpisph.physics.drucker_prager import geostatic_stress, return_mapping
 from mpisph.physics.solid import shear_force_tensor, stress_acceleration, velocity_gradient
 from mpisph.tensors import packed, unpacked
+from repo_script import load_script
 
 DP = 0.01
 H = 1.3 * DP
@@ -174,6 +175,19 @@ def test_material_constants():
     sig = geostatic_stress(np.array([[0.0, 0.5]]), 2.0, m, 9.8)[0]
     assert sig[1, 1] == pytest.approx(-1850 * 9.8 * 1.5)
     assert sig[0, 0] == sig[2, 2] == pytest.approx((1 - math.sin(math.radians(25))) * sig[1, 1])
+
+
+@pytest.mark.parametrize("lateral", [(0.0, 1.0 - math.sin(math.radians(25.0))), (0.0, 0.0)])
+def test_the_cube_yields_below_the_depth_production_gives(lateral):
+    """scripts/production.py's yield_depth: a column at rest with the lateral stresses ``lateral``
+    times sigma_v (a free face, a free edge) is inside the Drucker-Prager surface of return_mapping
+    just above that depth and beyond it just below."""
+    params = {"rho0": 1850.0, "E": 1.8e6, "nu": 0.3, "cohesion": 5e3, "phi": 25.0, "psi": 0.0, "g": 9.8}
+    depth = load_script("production").yield_depth(params, lateral)
+    m = soil()
+    for z, yields in ((0.99 * depth, False), (1.01 * depth, True)):
+        sig = -1850 * 9.8 * z * np.diag([*lateral, 1.0])
+        assert (return_mapping(sig, m.alpha_phi, m.k_c, np.empty((3, 3))) > 0.0) == yields
 
 
 def test_initial_stress_profiles():
