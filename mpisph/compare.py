@@ -7,6 +7,9 @@ diagnostics:
 
 - clustering, inner voids, the closest pair over dp and the fragments, with the share of the
   particles outside the largest (instability.py, walls included);
+- for an elastic solid or a soil on a domain without periodic axes, the paired share: particles
+  nearer than dp/2 that the flow did not bring together (pairing.py), where clustering also counts
+  a lattice squeezed by the flow;
 - the change of total energy, kinetic plus gravitational plus an elastic solid's strain energy,
   dE = E_end - E_0 in J and as a fraction of the energy that moved, max KE + max |PE - PE_0| (PE
   with the strain energy);
@@ -35,6 +38,8 @@ from .instability import tensile_instability
 from .io.diagnostics import read_diagnostics
 from .io.frames import list_frames, read_frame
 from .launch import mpirun_mpisph
+from .materials import ElasticConstants
+from .pairing import paired_share
 from .particles import MOVING
 from .stabilisers import stabiliser_names
 
@@ -104,6 +109,8 @@ def measures(out, case):
     energy = d["kinetic_energy"] + potential
     moved = d["kinetic_energy"].max() + np.abs(potential - potential[0]).max()
     out = {"t": float(last["t"]), "clustering": m["clustering"], "inner_voids": m["inner_voids"],
+           **({"paired": paired_share(last, first)}
+              if isinstance(case.material, ElasticConstants) and not any(case.periodic) else {}),
            "closest": m["min_spacing"], "fragments": m["fragments"], "detached": m["detached"],
            "dE": float(energy[-1] - energy[0]),
            "dE_rel": float((energy[-1] - energy[0]) / moved) if moved > 0 else 0.0}
@@ -126,20 +133,21 @@ def measures(out, case):
     return out
 
 
-def _cell(row, key, fmt):
-    return fmt.format(row[key]) if key in row else "–"
+def _cell(row, key, fmt, scale=1.0):
+    return fmt.format(scale * row[key]) if key in row else "–"
 
 
 def table(case_name, rows):
     """Markdown lines of the comparison."""
-    lines = [f"| stabiliser ({case_name}) | ended | t [s] | clustering | inner voids | closest pair / dp | "
+    lines = [f"| stabiliser ({case_name}) | ended | t [s] | clustering | paired | inner voids | closest pair / dp | "
              f"fragments (outside the largest) | dE [J] | dE / moved | momentum drift | angular drift | runout [m] |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, (status, row) in rows.items():
         if row is None:
-            lines.append(f"| {name} | {status} | " + " | ".join(["–"] * 10) + " |")
+            lines.append(f"| {name} | {status} | " + " | ".join(["–"] * 11) + " |")
             continue
         lines.append(f"| {name} | {status} | {row['t']:.4g} | {100 * row['clustering']:.3f} % | "
+                     f"{_cell(row, 'paired', '{:.3f} %', 100.0)} | "
                      f"{100 * row['inner_voids']:.3f} % | {row['closest']:.3f} | "
                      f"{row['fragments']} ({100 * row['detached']:.2f} %) | {row['dE']:.4g} | "
                      f"{row['dE_rel']:.3g} | {_cell(row, 'dP', '{:.2e}')} | {_cell(row, 'dL', '{:.2e}')} | "

@@ -8,9 +8,9 @@ ones UTVF leaves unshifted (000_ Eq. 37: div r < 0.6 d), by the sign of their pr
 (p = -tr(sigma)/3 for solids: tension is p < 0), by whether their nearest partner is a wall
 particle and, in 3D, by whether 3D UTVF with utvf_edge_neighbours=kept would leave them unshifted; the median distance to that partner and the median height of the clustered particles. This
 is the first thing to know when a clustering figure misses: tension inside the body, a free surface,
-or a wall. Then, from the run's first frame in the same directory, how close each pair is against
-its first separation under the deformation fitted around it (``affine_ratio``): a pair the
-material's own flow brought together, or one that came closer than the flow.
+or a wall. Then, from the run's first frame in the same directory, how close each pair of moving
+particles is against its first separation under the deformation fitted around it
+(mpisph/pairing.py): a pair the material's own flow brought together, or one that came closer.
 """
 
 import argparse
@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mpisph import surface
-from mpisph.instability import CLUSTER_DISTANCE, LINK_DISTANCE
+from mpisph import pairing, surface
+from mpisph.instability import CLUSTER_DISTANCE
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING
@@ -85,41 +85,6 @@ def pair_stress(frame, i, j):
     return np.abs(np.einsum("ka,ka->k", e, axes[:, :, 0])), np.einsum("ka,kab,kb->k", e, sigma, e)
 
 
-def fitted_deformation(frame, first, rows):
-    """The deformation gradient F of each particle of ``rows`` (indices into ``frame``) since
-    ``first``, the run's first frame: the least-squares F that maps its first-frame separations to
-    the material neighbours then within 1.5 dp (instability.py's link) onto their separations now,
-    as Falk and Langer (1998) fit the affine part of a local rearrangement."""
-    dp, order, n_moving = _moving_first(first)
-    x0 = first["x"][order]
-    start, nbr = neighbour_lists(x0, first["gid"][order], first["kind"][order], n_moving, LINK_DISTANCE * dp, x0.min(axis=0))
-    row0 = {g: k for k, g in enumerate(first["gid"][order].tolist())}
-    row = {g: k for k, g in enumerate(frame["gid"].tolist())}
-    dim = x0.shape[1]
-    F = np.empty((len(rows), dim, dim))
-    for k, i in enumerate(rows):
-        i0 = row0[int(frame["gid"][i])]
-        js0 = nbr[start[i0]:start[i0 + 1]]
-        js = np.array([row[g] for g in first["gid"][order][js0].tolist()], np.int64)
-        X, Y = x0[js0] - x0[i0], frame["x"][js] - frame["x"][i]
-        F[k] = np.linalg.solve(X.T @ X, X.T @ Y).T
-    return F
-
-
-def affine_ratio(frame, first, i, j):
-    """The distance of each pair (``i``, ``j``) of ``frame`` over the image F X_0 of its separation
-    X_0 in ``first``, the run's first frame, F the mean of the pair's ``fitted_deformation``, and
-    |X_0|. Near 1: the pair is as close as the deformation of the material around it makes it; well
-    below 1: it came closer than that."""
-    row = {g: k for k, g in enumerate(first["gid"].tolist())}
-    i0, j0 = (np.array([row[g] for g in frame["gid"][k].tolist()], np.int64) for k in (i, j))
-    F = 0.5 * (fitted_deformation(frame, first, i) + fitted_deformation(frame, first, j))
-    separation = first["x"][j0] - first["x"][i0]
-    image = np.einsum("kab,kb->ka", F, separation)
-    return (np.linalg.norm(frame["x"][j] - frame["x"][i], axis=1) / np.linalg.norm(image, axis=1),
-            np.linalg.norm(separation, axis=1))
-
-
 def describe(path):
     frame = read_frame(path, walls=True)
     dim = frame["x"].shape[1]
@@ -152,14 +117,16 @@ def describe(path):
     first = list_frames(Path(path).parent)[0]
     if Path(first).resolve() != Path(path).resolve():
         first = read_frame(first, walls=True)
-        ratio, separation = affine_ratio(frame, first, i, j)
-        stretch = np.linalg.svd(fitted_deformation(frame, first, i), compute_uv=False)
+        i, j = pairing.clustered_pairs(frame)  # moving partners only: a wall has no deformation
+        ratio, separation = pairing.affine_ratio(frame, first, i, j)
+        stretch = np.linalg.svd(pairing.fitted_deformation(frame, first, i), compute_uv=False)
         print(f"  first-frame distance: median {np.median(separation) / dp:.2f} dp; the fitted deformation's principal "
               f"stretches: median smallest {np.median(stretch[:, -1]):.2f}, largest {np.median(stretch[:, 0]):.2f}, "
               f"product {np.median(np.prod(stretch, axis=1)):.2f}")
         print(f"  distance over the first frame's separation under the fitted deformation: median {np.median(ratio):.2f}, "
               f"10-90 % {np.percentile(ratio, 10):.2f}-{np.percentile(ratio, 90):.2f}; "
-              f"within 10 % of it: {int(np.sum(np.abs(ratio - 1.0) < 0.1))}, below 0.5: {int(np.sum(ratio < 0.5))}")
+              f"within 10 % of it: {int(np.sum(np.abs(ratio - 1.0) < 0.1))}, paired (below "
+              f"{pairing.PAIRED_RATIO}): {int(np.sum(ratio < pairing.PAIRED_RATIO))} (mpisph/pairing.py)")
 
 
 def main():

@@ -33,8 +33,9 @@ def test_a_cut_with_and_without_utvf_side_by_side(tmp_path):
     for row in rows:
         cells = row.strip("| ").split(" | ")
         assert cells[1] == "done" and float(cells[2]) == pytest.approx(0.1)
-        assert cells[6].endswith("%)") and int(cells[6].split()[0]) >= 1  # fragments (outside the largest)
-        assert cells[9] == cells[10] == "–"  # a walled, gravity-driven case: no momentum columns
+        assert cells[4].endswith(" %") and float(cells[4].split()[0]) <= float(cells[3].split()[0])  # paired
+        assert cells[7].endswith("%)") and int(cells[7].split()[0]) >= 1  # fragments (outside the largest)
+        assert cells[10] == cells[11] == "–"  # a walled, gravity-driven case: no momentum columns
     for name in ("compare_particles.png", "compare_energy.png", "none/diagnostics.csv", "utvf/diagnostics.csv"):
         assert (tmp_path / name).stat().st_size > 0
 
@@ -47,7 +48,8 @@ def test_a_periodic_wall_free_case_reports_its_momentum_drift(tmp_path):
     assert r.returncode == 0, r.stderr
     for row in table_rows(tmp_path / "compare.md"):
         cells = row.strip("| ").split(" | ")
-        assert float(cells[9]) < 1e-12 and cells[10] == "–"
+        assert cells[4] == "–"  # a fluid: no paired share
+        assert float(cells[10]) < 1e-12 and cells[11] == "–"
 
 
 def test_a_clamped_elastic_solid_keeps_its_energy_in_the_table(tmp_path):
@@ -62,8 +64,8 @@ def test_a_clamped_elastic_solid_keeps_its_energy_in_the_table(tmp_path):
     assert [row.split(" | ")[0] for row in rows] == ["| tvf", "| tvf_limited"]
     for row in rows:
         cells = row.strip("| ").split(" | ")
-        assert cells[1] == "done" and abs(float(cells[8])) < 0.1
-        assert cells[9] == cells[10] == "–"
+        assert cells[1] == "done" and abs(float(cells[9])) < 0.1
+        assert cells[10] == cells[11] == "–"
 
 
 @pytest.mark.parametrize("args, message", [

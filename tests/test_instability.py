@@ -96,26 +96,6 @@ def test_the_clustered_script_finds_the_same_pairs():
     assert all(abs(a - b) == 30 for a, b in zip(i, j))
 
 
-def test_the_clustered_script_tells_deformation_from_pairing():
-    """A lattice squeezed to 0.45 of its spacing along x and stretched by 1 / 0.45 along y has every
-    particle clustered, each pair exactly as close as the fitted deformation makes it (ratio 1);
-    on the undeformed lattice a particle moved to 0.3 dp of its neighbour is well closer than the
-    deformation fitted around the pair."""
-    clustered = load_script("clustered")
-    first = lattice_frame()
-    F = np.diag([0.45, 1.0 / 0.45])
-    squeezed = dict(first, x=first["x"] @ F.T)
-    _, i, j = clustered.clustered_pairs(squeezed)
-    assert len(i) == len(first["x"])  # every particle, its x-neighbour 0.45 dp away
-    np.testing.assert_allclose(clustered.fitted_deformation(squeezed, first, i), np.tile(F, (len(i), 1, 1)), atol=1e-12)
-    ratio, separation = clustered.affine_ratio(squeezed, first, i, j)
-    np.testing.assert_allclose(ratio, 1.0, rtol=1e-12)
-    np.testing.assert_allclose(separation, 0.01, rtol=1e-12)  # x-neighbours on the first lattice
-    moved = lattice_frame(squeeze=[100])
-    _, i, j = clustered.clustered_pairs(moved)
-    assert np.all(clustered.affine_ratio(moved, first, i, j)[0] < 0.4)
-
-
 def test_report_command(tmp_path):
     r = mpirun_mpisph(["taylor_green", "--set", "nx=20", "--t-end", "0.1", "--out", tmp_path, "--quiet"])
     assert r.returncode == 0, r.stderr

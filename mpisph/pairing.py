@@ -1,0 +1,85 @@
+"""Pairing told apart from the flow's squeeze: how many clustered particles the flow did not bring together.
+
+instability.py's clustering counts particles nearer than dp/2 to another. Particles that follow the
+material (no shift) have such neighbours wherever the flow has squeezed the material to less than
+half its size along some direction: a collapsing soil cube does so without any instability
+(docs/REMEDIES.md). This module compares each clustered pair with what the flow made of it. Around
+each particle, the deformation gradient F since the run's first frame is fitted by least squares to
+the separations of the material neighbours it then had within 1.5 dp (instability.py's link), as Falk
+and Langer (1998) fit the affine part of a local rearrangement. A pair of moving particles nearer than
+dp/2 is *paired* when its distance is below half of |F X_0|, the image of its first separation X_0
+under the pair's mean F: the same factor one half that clustering applies to the lattice spacing.
+
+The fit needs the first-frame neighbourhoods to survive, as they do in solids and soils; in a fluid
+that has mixed they do not, and the measure says nothing.
+"""
+
+import numpy as np
+
+from .instability import CLUSTER_DISTANCE, LINK_DISTANCE
+from .neighbours import neighbour_lists
+from .particles import MOVING
+
+PAIRED_RATIO = 0.5  # a pair nearer than this share of its deformed first separation is paired
+
+
+def _moving(frame):
+    """(positions, global ids, kinds, spacing dp from the volumes) of the moving particles of ``frame``."""
+    moving = frame["kind"] == MOVING
+    dim = frame["x"].shape[1]
+    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
+    return frame["x"][moving], frame["gid"][moving], frame["kind"][moving], dp
+
+
+def clustered_pairs(frame):
+    """(i, j): each moving particle of ``frame`` with another moving particle nearer than dp/2, and
+    that nearest one, as indices into ``frame``."""
+    x, gid, kind, dp = _moving(frame)
+    start, nbr = neighbour_lists(x, gid, kind, len(x), CLUSTER_DISTANCE * dp, x.min(axis=0))
+    rows = np.flatnonzero(frame["kind"] == MOVING)
+    mine = np.flatnonzero(np.diff(start) > 0)
+    partner = np.array([nbr[start[i] + np.argmin(np.linalg.norm(x[nbr[start[i]:start[i + 1]]] - x[i], axis=1))]
+                        for i in mine], np.int64)
+    return rows[mine], rows[partner] if len(mine) else np.empty(0, np.int64)
+
+
+def fitted_deformation(frame, first, rows):
+    """The deformation gradient F since ``first`` (the run's first frame) of each particle of ``rows``
+    (indices into ``frame``, moving particles): the least-squares F that maps its first-frame
+    separations to the moving particles then within 1.5 dp onto their separations now."""
+    x0, gid0, kind0, dp = _moving(first)
+    start, nbr = neighbour_lists(x0, gid0, kind0, len(x0), LINK_DISTANCE * dp, x0.min(axis=0))
+    row0 = {g: k for k, g in enumerate(gid0.tolist())}
+    row = {g: k for k, g in enumerate(frame["gid"].tolist())}
+    dim = x0.shape[1]
+    F = np.empty((len(rows), dim, dim))
+    for k, i in enumerate(rows):
+        i0 = row0[int(frame["gid"][i])]
+        js0 = nbr[start[i0]:start[i0 + 1]]
+        js = np.array([row[g] for g in gid0[js0].tolist()], np.int64)
+        X, Y = x0[js0] - x0[i0], frame["x"][js] - frame["x"][i]
+        F[k] = np.linalg.solve(X.T @ X, X.T @ Y).T
+    return F
+
+
+def affine_ratio(frame, first, i, j):
+    """(ratio, |X_0|) of each pair (``i``, ``j``) of moving particles of ``frame``: its distance over
+    |F X_0|, X_0 its separation in ``first`` and F the mean of the pair's ``fitted_deformation``.
+    Near 1: the pair is as close as the flow around it made it; below 1/2: paired."""
+    row = {g: k for k, g in enumerate(first["gid"].tolist())}
+    i0, j0 = (np.array([row[g] for g in frame["gid"][k].tolist()], np.int64) for k in (i, j))
+    F = 0.5 * (fitted_deformation(frame, first, i) + fitted_deformation(frame, first, j))
+    separation = first["x"][j0] - first["x"][i0]
+    image = np.einsum("kab,kb->ka", F, separation)
+    return (np.linalg.norm(frame["x"][j] - frame["x"][i], axis=1) / np.linalg.norm(image, axis=1),
+            np.linalg.norm(separation, axis=1))
+
+
+def paired_share(frame, first):
+    """The share of the moving particles of ``frame`` that are paired (module docstring): nearer
+    than dp/2 to another moving particle and than half their deformed first separation."""
+    i, j = clustered_pairs(frame)
+    n = int(np.sum(frame["kind"] == MOVING))
+    if not len(i):
+        return 0.0
+    return float(np.sum(affine_ratio(frame, first, i, j)[0] < PAIRED_RATIO)) / n
