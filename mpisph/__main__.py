@@ -73,10 +73,14 @@ def cmd_info(name):
 
 
 def cmd_report(paths):
-    """Tensile-instability measure of each frame (see mpisph.instability)."""
+    """Tensile-instability measure of each frame (see mpisph.instability); for a solid or a soil,
+    also the paired share against the first frame of its run's directory (mpisph.pairing)."""
+    from pathlib import Path
+
+    from . import pairing
     from .case import build_case, load_case_module
     from .instability import tensile_instability
-    from .io.frames import check_frame, read_frame
+    from .io.frames import check_frame, list_frames, read_frame
     for path in paths:
         check_frame(path)
     for path in paths:
@@ -86,7 +90,11 @@ def cmd_report(paths):
         lo, hi = case.domain
         periods = [hi[a] - lo[a] if case.periodic[a] else 0.0 for a in range(case.dim)]
         m = tensile_instability(frame, lo, periods)
-        print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%, "
+        paired = ""
+        if pairing.applies(case):
+            first = read_frame(list_frames(str(Path(path).parent))[0])
+            paired = f" ({100 * pairing.paired_share(frame, first):.3f}% paired)"
+        print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%{paired}, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
               f"closest pair {m['min_spacing']:.3f} dp, {m['fragments']} fragment{'s' * (m['fragments'] > 1)} "
               f"({100 * m['detached']:.2f}% outside the largest)")

@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import pairing
 from .arguments import Parser, add_set, parse_sets
 from .case import build_case, load_case_module, resolve_params
 from .errors import InputError
@@ -38,8 +39,6 @@ from .instability import tensile_instability
 from .io.diagnostics import read_diagnostics
 from .io.frames import list_frames, read_frame
 from .launch import mpirun_mpisph
-from .materials import ElasticConstants
-from .pairing import paired_share
 from .particles import MOVING
 from .stabilisers import stabiliser_names
 
@@ -109,8 +108,7 @@ def measures(out, case):
     energy = d["kinetic_energy"] + potential
     moved = d["kinetic_energy"].max() + np.abs(potential - potential[0]).max()
     out = {"t": float(last["t"]), "clustering": m["clustering"], "inner_voids": m["inner_voids"],
-           **({"paired": paired_share(last, first)}
-              if isinstance(case.material, ElasticConstants) and not any(case.periodic) else {}),
+           **({"paired": pairing.paired_share(last, first)} if pairing.applies(case) else {}),
            "closest": m["min_spacing"], "fragments": m["fragments"], "detached": m["detached"],
            "dE": float(energy[-1] - energy[0]),
            "dE_rel": float((energy[-1] - energy[0]) / moved) if moved > 0 else 0.0}

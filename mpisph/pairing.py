@@ -17,10 +17,17 @@ that has mixed they do not, and the measure says nothing.
 import numpy as np
 
 from .instability import CLUSTER_DISTANCE, LINK_DISTANCE
+from .materials import ElasticConstants
 from .neighbours import neighbour_lists
 from .particles import MOVING
 
 PAIRED_RATIO = 0.5  # a pair nearer than this share of its deformed first separation is paired
+
+
+def applies(case):
+    """Whether the measure means something for ``case``: an elastic solid or a soil (their particles
+    keep their neighbours) on a domain without periodic axes (whose wraps the fit would see as jumps)."""
+    return isinstance(case.material, ElasticConstants) and not any(case.periodic)
 
 
 def _moving(frame):

@@ -123,7 +123,8 @@ def describe(path):
         print(f"  first-frame distance: median {np.median(separation) / dp:.2f} dp; the fitted deformation's principal "
               f"stretches: median smallest {np.median(stretch[:, -1]):.2f}, largest {np.median(stretch[:, 0]):.2f}, "
               f"product {np.median(np.prod(stretch, axis=1)):.2f}")
-        print(f"  distance over the first frame's separation under the fitted deformation: median {np.median(ratio):.2f}, "
+        print(f"  distance over the first frame's separation under the fitted deformation: "
+              f"median {np.median(ratio):.2f}, "
               f"10-90 % {np.percentile(ratio, 10):.2f}-{np.percentile(ratio, 90):.2f}; "
               f"within 10 % of it: {int(np.sum(np.abs(ratio - 1.0) < 0.1))}, paired (below "
               f"{pairing.PAIRED_RATIO}): {int(np.sum(ratio < pairing.PAIRED_RATIO))} (mpisph/pairing.py)")

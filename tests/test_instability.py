@@ -103,3 +103,13 @@ def test_report_command(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "clustering 0.000%, inner voids 0.000%, free surface 0.00%, closest pair" in r.stdout
     assert "1 fragment (0.00% outside the largest)" in r.stdout
+    assert "paired" not in r.stdout  # a fluid: pairing.applies says no
+
+
+def test_report_command_on_a_soil_gives_its_paired_share(tmp_path):
+    r = mpirun_mpisph(["cohesive_failure_2d", "--set", "dp=0.1", "--t-end", "0.1", "--output-interval", "0.05",
+                       "--out", tmp_path, "--quiet"])
+    assert r.returncode == 0, r.stderr
+    r = mpirun_mpisph(["report", tmp_path / "frame_00000.hdf", tmp_path / "frame_00002.hdf"])
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.count("% paired)") == 2 and "clustering 0.000% (0.000% paired)" in r.stdout
