@@ -83,6 +83,7 @@ def cmd_report(paths):
     from .io.frames import check_frame, list_frames, read_frame
     for path in paths:
         check_frame(path)
+    firsts = {}  # the first frame of each run directory, read once
     for path in paths:
         frame = read_frame(path, walls=True)
         params = frame["params"]
@@ -92,8 +93,10 @@ def cmd_report(paths):
         m = tensile_instability(frame, lo, periods)
         paired = ""
         if pairing.applies(case):
-            first = read_frame(list_frames(str(Path(path).parent))[0])
-            paired = f" ({100 * pairing.paired_share(frame, first):.3f}% paired)"
+            run = str(Path(path).parent)
+            if run not in firsts:
+                firsts[run] = read_frame(list_frames(run)[0])
+            paired = f" ({100 * pairing.paired_share(frame, firsts[run]):.3f}% paired)"
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%{paired}, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
               f"closest pair {m['min_spacing']:.3f} dp, {m['fragments']} fragment{'s' * (m['fragments'] > 1)} "

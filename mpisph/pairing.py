@@ -15,6 +15,7 @@ that has mixed they do not, and the measure says nothing.
 """
 
 import numpy as np
+from numba import njit
 
 from .instability import CLUSTER_DISTANCE, LINK_DISTANCE
 from .materials import ElasticConstants
@@ -38,16 +39,52 @@ def _moving(frame):
     return frame["x"][moving], frame["gid"][moving], frame["kind"][moving], dp
 
 
+@njit(cache=True)
+def nearest_partners(n, start, nbr, x, out):
+    """``out[i]``: the nearest of the listed neighbours of each particle i in [0, n), -1 if none."""
+    for i in range(n):
+        best, out[i] = np.inf, -1
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d = 0.0
+            for a in range(x.shape[1]):
+                d += (x[j, a] - x[i, a]) ** 2
+            if d < best:
+                best, out[i] = d, j
+
+
+@njit(cache=True)
+def separation_moments(rows, start, nbr, x0, x, XX, XY):
+    """For particle i = rows[k]: ``XX[k]`` = sum_j X (x) X and ``XY[k]`` = sum_j X (x) Y over its
+    listed neighbours j, X = x0[j] - x0[i] its first separation and Y = x[j] - x[i] the one now
+    (rows of x and x0 alike); the least-squares F with F X ~ Y solves XX F^T = XY."""
+    dim = x0.shape[1]
+    for k in range(len(rows)):
+        i = rows[k]
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            for a in range(dim):
+                for b in range(dim):
+                    XX[k, a, b] += (x0[j, a] - x0[i, a]) * (x0[j, b] - x0[i, b])
+                    XY[k, a, b] += (x0[j, a] - x0[i, a]) * (x[j, b] - x[i, b])
+
+
+def _rows_of(gids, among):
+    """The index in ``among`` of each global id of ``gids`` (all of them in ``among``)."""
+    order = np.argsort(among, kind="stable")
+    return order[np.searchsorted(among, gids, sorter=order)]
+
+
 def clustered_pairs(frame):
     """(i, j): each moving particle of ``frame`` with another moving particle nearer than dp/2, and
     that nearest one, as indices into ``frame``."""
     x, gid, kind, dp = _moving(frame)
     start, nbr = neighbour_lists(x, gid, kind, len(x), CLUSTER_DISTANCE * dp, x.min(axis=0))
+    partner = np.empty(len(x), np.int64)
+    nearest_partners(len(x), start, nbr, x, partner)
     rows = np.flatnonzero(frame["kind"] == MOVING)
-    mine = np.flatnonzero(np.diff(start) > 0)
-    partner = np.array([nbr[start[i] + np.argmin(np.linalg.norm(x[nbr[start[i]:start[i + 1]]] - x[i], axis=1))]
-                        for i in mine], np.int64)
-    return rows[mine], rows[partner] if len(mine) else np.empty(0, np.int64)
+    mine = np.flatnonzero(partner >= 0)
+    return rows[mine], rows[partner[mine]]
 
 
 def fitted_deformation(frame, first, rows):
@@ -56,26 +93,20 @@ def fitted_deformation(frame, first, rows):
     separations to the moving particles then within 1.5 dp onto their separations now."""
     x0, gid0, kind0, dp = _moving(first)
     start, nbr = neighbour_lists(x0, gid0, kind0, len(x0), LINK_DISTANCE * dp, x0.min(axis=0))
-    row0 = {g: k for k, g in enumerate(gid0.tolist())}
-    row = {g: k for k, g in enumerate(frame["gid"].tolist())}
-    dim = x0.shape[1]
-    F = np.empty((len(rows), dim, dim))
-    for k, i in enumerate(rows):
-        i0 = row0[int(frame["gid"][i])]
-        js0 = nbr[start[i0]:start[i0 + 1]]
-        js = np.array([row[g] for g in gid0[js0].tolist()], np.int64)
-        X, Y = x0[js0] - x0[i0], frame["x"][js] - frame["x"][i]
-        F[k] = np.linalg.solve(X.T @ X, X.T @ Y).T
-    return F
+    now = frame["x"][_rows_of(gid0, frame["gid"])]  # the first frame's moving particles, where they are now
+    XX, XY = (np.zeros((len(rows), x0.shape[1], x0.shape[1])) for _ in range(2))
+    separation_moments(_rows_of(frame["gid"][rows], gid0), start, nbr, x0, now, XX, XY)
+    return np.linalg.solve(XX, XY).transpose(0, 2, 1)
 
 
 def affine_ratio(frame, first, i, j):
     """(ratio, |X_0|) of each pair (``i``, ``j``) of moving particles of ``frame``: its distance over
     |F X_0|, X_0 its separation in ``first`` and F the mean of the pair's ``fitted_deformation``.
     Near 1: the pair is as close as the flow around it made it; below 1/2: paired."""
-    row = {g: k for k, g in enumerate(first["gid"].tolist())}
-    i0, j0 = (np.array([row[g] for g in frame["gid"][k].tolist()], np.int64) for k in (i, j))
-    F = 0.5 * (fitted_deformation(frame, first, i) + fitted_deformation(frame, first, j))
+    ends, which = np.unique(np.concatenate([i, j]), return_inverse=True)  # each particle fitted once
+    F = fitted_deformation(frame, first, ends)[which]
+    F = 0.5 * (F[:len(i)] + F[len(i):])
+    i0, j0 = (_rows_of(frame["gid"][k], first["gid"]) for k in (i, j))
     separation = first["x"][j0] - first["x"][i0]
     image = np.einsum("kab,kb->ka", F, separation)
     return (np.linalg.norm(frame["x"][j] - frame["x"][i], axis=1) / np.linalg.norm(image, axis=1),

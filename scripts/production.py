@@ -338,12 +338,17 @@ STARTS = {"geostatic": "geostatic, at rest (the default)", "none": "none, loaded
 EARLY = (0.1, 0.2, 0.3, 0.5)  # the times the band's start is followed at [s]
 
 
+def soil_of(params):
+    """The Drucker-Prager soil of the run ``params``."""
+    return DruckerPrager(rho0=params["rho0"], E=params["E"], nu=params["nu"], cohesion=params["cohesion"],
+                         phi=params["phi"], psi=params["psi"])
+
+
 def yield_depth(params, lateral):
     """The depth below a level top at which a column at rest, sigma_v = -rho0 g z and the lateral
     principal stresses ``lateral`` times sigma_v, reaches the Drucker-Prager surface alpha_phi I1 +
     sqrt(J2) = k_c (return_mapping's) of the soil of the run ``params``."""
-    soil = DruckerPrager(rho0=params["rho0"], E=params["E"], nu=params["nu"], cohesion=params["cohesion"],
-                         phi=params["phi"], psi=params["psi"])
+    soil = soil_of(params)
     s = np.array([*lateral, 1.0])  # principal stresses over sigma_v
     sqrt_j2 = np.sqrt(((s[0] - s[1]) ** 2 + (s[1] - s[2]) ** 2 + (s[2] - s[0]) ** 2) / 6.0)
     return soil.k_c / ((sqrt_j2 - soil.alpha_phi * s.sum()) * soil.rho0 * params["g"])
@@ -367,8 +372,7 @@ def cube_band_start(ranks, reuse):
                 top_first.append(label)
             if k == 0:
                 first.append(f"{start} {shares[0][0]:.2f} / {shares[0][-1]:.2f}")
-    k0 = DruckerPrager(rho0=1.0, E=1.0, nu=0.3, phi=params["phi"]).k0
-    face, edge = yield_depth(params, (0.0, k0)), yield_depth(params, (0.0, 0.0))
+    face, edge = yield_depth(params, (0.0, soil_of(params).k0)), yield_depth(params, (0.0, 0.0))
     mechanics = (f"At rest the soil meets the Drucker-Prager surface (alpha_phi I1 + sqrt(J2) = k_c) on a free face, "
                  f"where the stress across the face is zero and the one along it (1 - sin phi) sigma_v, below "
                  f"{face:.2f} m from the top. On a vertical edge, both lateral stresses zero, it does so below "
