@@ -29,11 +29,13 @@ def mu_i_params(alpha_doc, viscous_step):
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
                                "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
-        "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 42) or carried, the share of it "
-                              "the pairs carry (physics/mu_i.py)", choices=("state", "carried")),
-        "law_strain_rate": Param("own", "-", "strain rate of the friction law: own (each grain's, Eq. 31) or "
-                                 "kernel_mean, the modulus of its kernel mean (physics/mu_i.py)",
-                                 choices=("own", "kernel_mean")),
+        "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 42), carried, the share of it "
+                              "the pairs carry, or carried_mean, its kernel mean (physics/mu_i.py)",
+                              choices=("state", "carried", "carried_mean")),
+        "law_strain_rate": Param("own", "-", "strain rate of the friction law: own (each grain's, Eq. 31), "
+                                 "kernel_mean, the modulus of its kernel mean, or deviatoric_kernel_mean, that of "
+                                 "the mean's deviator (physics/mu_i.py)",
+                                 choices=("own", "kernel_mean", "deviatoric_kernel_mean")),
     }
 
 

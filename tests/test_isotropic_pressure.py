@@ -123,7 +123,7 @@ def test_the_law_takes_the_carried_pressure():
     for carried in (False, True):
         rho_s, p, eta = np.array([material.rho_s0]), np.zeros(1), np.zeros(1)
         granular_state(1, np.zeros(1, np.int8), np.array([rho]), np.array([gamma_dot]), B, carried, rho_s, p, eta,
-                       2, m)
+                       2, m, np.zeros(0))
         x = rho_s[0] / material.rho_s0
         I = gamma_dot * material.d0 * x ** -0.5 / np.sqrt((s if carried else 1.0) * p[0] / rho_s[0])
         assert 1.0 - rho / rho_s[0] / material.phi_max == pytest.approx(

@@ -1,21 +1,23 @@
-"""The strain rate of the mu(I) law with ``law_strain_rate = kernel_mean`` (physics/mu_i.py,
-viscous_stress.kernel_mean_rate): the modulus of the kernel mean of eps is the modulus of a smooth
-strain rate, and it takes most of the bias out of the modulus of a noisy one."""
+"""The strain rate of the mu(I) law with ``law_strain_rate = kernel_mean`` and
+``deviatoric_kernel_mean`` (physics/mu_i.py, kernel_mean.py): the modulus of the kernel mean of
+eps is the modulus of a smooth strain rate, and it takes most of the bias out of the modulus of a
+noisy one; the modulus of its deviator leaves out a change of volume."""
 
 import numpy as np
 import pytest
 
 from lattice import lattice
 from mpisph.correction import correction_matrix
-from mpisph.physics.viscous_stress import kernel_mean_rate, strain_rate
+from mpisph.physics.kernel_mean import kernel_mean, rate_modulus
+from mpisph.physics.viscous_stress import strain_rate
 from mpisph.tensors import size
 
 DP, RHO, RATE = 0.01, 1000.0, 3.0
 
 
-def rates(dim, v):
-    """(own gamma_dot, gamma_dot of the kernel mean of eps) of the inner particles of a lattice
-    moving with velocities ``v``, the gradient corrected by B (000_ Eq. 24)."""
+def rates(dim, v, deviatoric=False):
+    """(own gamma_dot, gamma_dot of the kernel mean of eps, or of its deviator) of the inner
+    particles of a lattice moving with velocities ``v``, the gradient corrected by B (000_ Eq. 24)."""
     x, kind, start, nbr, k, inner = lattice(dim, 1.3, n=16, dp=DP)
     n = len(x)
     mass, rho = np.full(n, RHO * DP**dim), np.full(n, RHO)
@@ -24,7 +26,9 @@ def rates(dim, v):
     strain, own, mean = np.zeros((n, size(dim))), np.zeros(n), np.zeros(n)
     normal, zeros = np.zeros((n, dim)), np.zeros(n)
     strain_rate(n, start, nbr, x, v(x), rho, mass, kind, normal, zeros, 1.5, B, k.params, strain, own)
-    kernel_mean_rate(n, start, nbr, x, rho, mass, kind, strain, k.params, mean)
+    mean_strain = np.zeros_like(strain)
+    kernel_mean(n, start, nbr, x, rho, mass, kind, strain, k.params, mean_strain)
+    rate_modulus(n, kind, mean_strain, deviatoric, dim, mean)
     return own[inner], mean[inner]
 
 
@@ -63,3 +67,17 @@ def test_the_kernel_mean_filters_the_bias_of_grain_scale_waves_and_keeps_resolve
     assert own > 0.003 and 0.0 < mean < 0.2 * own
     own, mean = biases(12)
     assert own > 0.03 and 0.8 * own < mean < own
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_the_deviator_keeps_the_shear_and_leaves_out_a_change_of_volume(dim):
+    """A uniform expansion at the rate a on the shear: eps = a I + the shear's, whose modulus
+    sqrt(RATE^2 + 2 D a^2) counts the expansion as shear; its deviator's modulus is RATE."""
+    a = 0.5 * RATE
+
+    def expanding(x):
+        return shear(x) + a * (x - x.mean(axis=0))
+    _, full = rates(dim, expanding)
+    _, deviatoric = rates(dim, expanding, deviatoric=True)
+    assert full == pytest.approx(np.sqrt(RATE**2 + 2 * dim * a**2), rel=1e-10)
+    assert deviatoric == pytest.approx(RATE, rel=1e-10)

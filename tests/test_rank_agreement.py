@@ -70,6 +70,11 @@ CASES = {
                                   "law_pressure=carried", "law_strain_rate=kernel_mean",
                                   "viscous_form=corrected_stress", "viscous_step=implicit",
                                   "--t-end", "0.02", "--output-interval", "0.01"], 0.04),
+    # the law's kernel means of the deviatoric strain rate and of the carried pressure (s p sent to the ghosts)
+    "inclined_plane law_means": (["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2", "pressure_form=isotropic",
+                                  "law_pressure=carried_mean", "law_strain_rate=deviatoric_kernel_mean",
+                                  "viscous_form=corrected_stress", "viscous_step=implicit",
+                                  "--t-end", "0.02", "--output-interval", "0.01"], 0.04),
     # the implicit viscous kick: conjugate gradients with partition-independent sums
     "lube_collapse_2d": (["--set", "dp=0.005", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
     # the implicit kick of the corrected viscous stress: its stress sent to ghosts every iteration

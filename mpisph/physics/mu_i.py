@@ -67,7 +67,7 @@ only as h / dp grows.
 
 The option ``law_strain_rate = kernel_mean`` gives the law the modulus of the kernel mean of
 the strain rate, sqrt(2 e_i : e_i) with e_i = sum_j V_j eps_j W_ij / sum_j V_j W_ij over the
-moving particles j, i among them (viscous_stress.kernel_mean_rate), instead of the particle's
+moving particles j, i among them (kernel_mean.py), instead of the particle's
 own gamma_dot_i. Why: a modulus is biased by noise. A particle's eps_i is the resolved strain
 rate plus the particles' grain-to-grain jostle, which is not a field of the continuum and has no
 mean, but adds its variance to 2 eps:eps. In simple shear the law's eta = mu p / gamma_dot then
@@ -79,6 +79,31 @@ square lattice at h = 1.3 dp; 0.98-0.99 on the same frames) and leaves a smooth 
 second order in h. The viscous stress keeps the particle's
 own eps (its divergence stays the gradient's adjoint); the mean needs eps on the ghosts (one
 halo refresh per step).
+
+The option ``law_strain_rate = deviatoric_kernel_mean`` takes the modulus of the kernel mean's
+deviator e - tr(e) / D I instead. Why: 004_'s constitutive frame (Eq. 4, after Landau and
+Lifshitz) puts the shear viscosity on the deviator of eps and the volume change on a bulk
+viscosity; the modulus of Eq. 6 is that of the deviator wherever the flow is incompressible, as
+the law was measured. The weakly compressible grains' volumetric rate div v is acoustic noise
+that the law would count as shear: in the steady incline its rms is 0.10-0.13 of the shear rate
+at H/dp = 20 and 0.25-0.31 at H/dp = 40 (a pressure noise of a given size has a velocity noise
+of a given size, whose gradient grows as 1/dp), and it is what the kernel mean leaves of the
+misalignment (docs/INCLINE.md). The deviator is that of the model's D dimensions, whose pressure
+is the mean of its D normal stresses. The viscous stress keeps the whole of eps: its isotropic
+part, 2 eta div v / D, is the bulk viscosity that damps the noise.
+
+The option ``law_pressure = carried_mean`` gives the law the kernel mean of the carried pressure
+s p (kernel_mean.py) and forms I from it (Eq. 6), where the grains' own pressure and dilatancy
+(Eqs. 41-44) stay each particle's. Why: at a given strain rate the law's shear stress
+mu(I) P = mu_s P + (mu_2 - mu_s) P I / (I + I_0), I proportional to P^(-1/2), is concave in P:
+over a pressure that scatters by a relative variance sigma^2 about its mean it delivers the
+fraction 1 - sigma^2 I_0 (3 I + I_0) / (8 (I + I_0)^2) of the mu_2 - mu_s part of the stress at the
+mean pressure. The grains' pressures of the steady incline scatter by 0.5-0.75 of their layer's mean
+(a grain-density scatter of 1e-3 is 63 Pa at K_t = 1.6e-5 1/Pa, where the weight at
+mid-depth of the CI-sized layer is about 130 Pa), which costs the mean shear stress about
+1 % at I_u, turned eightfold into shear rate by the law; the kernel mean takes the scatter out.
+A continuum law takes the continuum's pressure, as it takes its strain rate. The mean needs s p on
+the ghosts (one more halo refresh per step).
 
 Walls are the ghost particles of Morris et al. (Eqs. 34-36, walls.py): a wall
 partner takes the density, pressure and viscosity of particle i and the
@@ -117,18 +142,21 @@ from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
                        regularised_viscosity)
-from .viscous_stress import kernel_mean_rate, stress_divergence, strain_rate, viscous_force_tensor
+from .kernel_mean import kernel_mean, rate_modulus
+from .viscous_stress import stress_divergence, strain_rate, viscous_force_tensor
 from .walls import WALL_DISTANCE, along_wall_normal, morris_relative_velocity, require_wall_distances
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
 
 
 @njit(cache=True)
-def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m):
+def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m, law_p):
     """Grain density, pressure and regularised viscosity of the moving particles from their bulk
     density and strain rate (004_ Eqs. 41-44, 46-47, 55; mu_i_law.py). With ``carried`` the law
     takes the pressure the pairs carry, s p with s = tr(B^-1) / D (module docstring): I and the
-    dilatancy of Eq. 8 from gamma_dot / sqrt(s), eta from s p."""
+    dilatancy of Eq. 8 from gamma_dot / sqrt(s), eta from s p. With ``law_p`` of length N it stores
+    the law's pressure s p there instead of eta, which ``law_viscosity`` then takes from its kernel
+    mean."""
     full, adj = np.empty((dim, dim)), np.empty((dim, dim))
     for i in range(n):
         if kind[i] != MOVING:
@@ -137,8 +165,24 @@ def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m):
         x = grain_density_ratio(rho[i], gamma_dot[i] / math.sqrt(s), rho_s[i] / m.rho_s0, dim, m)
         rho_s[i] = x * m.rho_s0
         p[i] = (x - 1.0) / m.K_t
+        if law_p.shape[0] > 0:
+            law_p[i] = s * p[i]
+            continue
         I = inertial_number(rho[i], rho_s[i], m)
         eta[i] = regularised_viscosity(s * p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
+
+
+@njit(cache=True)
+def law_viscosity(n, kind, rho_s, gamma_dot, law_p, eta, dim, m):
+    """eta of the moving particles from the law's pressure ``law_p`` (with law_pressure = carried_mean
+    the kernel mean of s p) and I = gamma_dot d / sqrt(law_p / rho_s) of 004_ Eq. 6, d the grain size
+    of Eq. 43 (mu_i_law.py); zero where law_p <= 0."""
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        d = m.d0 * (rho_s[i] / m.rho_s0) ** (-1.0 / dim)
+        I = gamma_dot[i] * d * math.sqrt(rho_s[i] / law_p[i]) if law_p[i] > 0.0 else 0.0
+        eta[i] = regularised_viscosity(law_p[i], gamma_dot[i], I, rho_s[i], d, m)
 
 
 @njit(inline="always")
@@ -285,8 +329,8 @@ VISCOUS_FORMS = ("cleary", "corrected_stress")
 VISCOUS_STEPS = ("explicit", "implicit")
 VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_law's MEAN_* codes
 PRESSURE_FORMS = ("symmetric", "isotropic")
-LAW_PRESSURES = ("state", "carried")
-LAW_STRAIN_RATES = ("own", "kernel_mean")
+LAW_PRESSURES = ("state", "carried", "carried_mean")
+LAW_STRAIN_RATES = ("own", "kernel_mean", "deviatoric_kernel_mean")
 
 
 class MuIScheme(Scheme):
@@ -305,9 +349,10 @@ class MuIScheme(Scheme):
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
     (mu_i_law.pair_viscosity; ghosts then need gamma_dot too), and
     ``pressure_form``: ``symmetric`` (Eq. 27) or ``isotropic``, and ``law_pressure``: ``state``
-    (the grains' pressure of Eq. 42) or ``carried`` (the share of it the pairs carry) in the
-    friction law, and ``law_strain_rate``: ``own`` (each particle's gamma_dot, Eq. 31) or
-    ``kernel_mean`` (the modulus of the kernel mean of eps) in the law (module docstring).
+    (the grains' pressure of Eq. 42), ``carried`` (the share of it the pairs carry) or
+    ``carried_mean`` (its kernel mean) in the friction law, and ``law_strain_rate``: ``own`` (each
+    particle's gamma_dot, Eq. 31), ``kernel_mean`` (the modulus of the kernel mean of eps) or
+    ``deviatoric_kernel_mean`` (that of its deviator) in the law (module docstring).
     """
 
     name = "mu_i"
@@ -325,8 +370,12 @@ class MuIScheme(Scheme):
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
-        self.carried = self.option_choice("law_pressure", LAW_PRESSURES) == "carried"
-        self.smoothed_rate = self.option_choice("law_strain_rate", LAW_STRAIN_RATES) == "kernel_mean"
+        law_pressure = self.option_choice("law_pressure", LAW_PRESSURES)
+        self.carried = law_pressure != "state"
+        self.smoothed_pressure = law_pressure == "carried_mean"
+        law_strain_rate = self.option_choice("law_strain_rate", LAW_STRAIN_RATES)
+        self.smoothed_rate = law_strain_rate != "own"
+        self.deviatoric_rate = law_strain_rate == "deviatoric_kernel_mean"
         self.uses_B = self.corrected or self.isotropic or self.carried
         self.viscous_factor = 2.0 * (case.dim + 2)
         self.h = kernel.h
@@ -340,6 +389,9 @@ class MuIScheme(Scheme):
             Field("rho_s", (), np.float64, "grain density [kg/m^3]"),
             WALL_DISTANCE,
         )
+        if self.smoothed_pressure:
+            self.fields += (Field("law_pressure", (), np.float64,
+                                  "pressure the law takes, the kernel mean of s p (law_pressure = carried_mean) [Pa]"),)
         self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == MEAN_SECANT else ())
         if self.corrected:
             self.fields += (
@@ -361,6 +413,7 @@ class MuIScheme(Scheme):
                 self.fields += (Field("viscous_direction_stress", ("dim", "dim"), np.float64,
                                       "2 eta eps B of the implicit kick's search direction [Pa]"),)
         self._no_B = np.zeros((0, 1))
+        self._no_law_pressure = np.zeros(0)
 
     def initial_density(self, pressure):
         return self.material.density_at_rest(pressure)
@@ -385,10 +438,20 @@ class MuIScheme(Scheme):
                     self.beta_max, B if self.corrected else self._no_B, ctx.kernel.params, pa.strain, pa.gamma_dot)
         if self.smoothed_rate:
             ctx.refresh(["strain"])
-            kernel_mean_rate(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, pa.strain, ctx.kernel.params,
-                             pa.gamma_dot)
+            mean_strain = np.empty_like(pa.strain)
+            kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, pa.strain, ctx.kernel.params,
+                        mean_strain)
+            rate_modulus(n, pa.kind, mean_strain, self.deviatoric_rate, self.dim, pa.gamma_dot)
+        law_p = pa.law_pressure if self.smoothed_pressure else self._no_law_pressure
         granular_state(n, pa.kind, pa.rho, pa.gamma_dot, B, self.carried, pa.rho_s, pa.p, pa.eta, self.dim,
-                       self.params)
+                       self.params, law_p)
+        if self.smoothed_pressure:
+            ctx.refresh(["law_pressure"])
+            mean_p = np.empty((n, 1))
+            kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, law_p.reshape(-1, 1),
+                        ctx.kernel.params, mean_p)
+            law_p[:n] = mean_p[:, 0]
+            law_viscosity(n, pa.kind, pa.rho_s, pa.gamma_dot, law_p, pa.eta, self.dim, self.params)
         if self.corrected:
             viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, pa.T_visc)
         if self.isotropic:

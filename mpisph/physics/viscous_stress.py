@@ -40,8 +40,8 @@ velocity of i's mirror image, not the one on i's profile.
 import numpy as np
 from numba import njit
 
-from ..kernels import pair_dw, pair_w
-from ..neighbours import pair_difference, pair_distance, pair_offset
+from ..kernels import pair_dw
+from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..tensors import component, set_identity, store_scaled_inverse, times_vector
 from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
@@ -98,34 +98,6 @@ def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, be
                 strain[i, component(dim, a, b)] = e
                 norm += e * e if a == b else 2.0 * e * e
         gamma_dot[i] = np.sqrt(2.0 * norm)
-
-
-@njit(cache=True)
-def kernel_mean_rate(n, start, nbr, xc, rho, mass, kind, strain, k, gamma_dot):
-    """gamma_dot_i = sqrt(2 e_i : e_i) of the kernel mean e_i = sum_j V_j eps_j W_ij / sum_j V_j W_ij
-    of the strain rate over the moving particles j, i among them, for the moving particles i
-    (mu_i.py's option law_strain_rate). Needs eps on the ghosts."""
-    dim, size = xc.shape[1], strain.shape[1]
-    e = np.empty(size)
-    for i in range(n):
-        if kind[i] != MOVING:
-            continue
-        w = mass[i] / rho[i] * pair_w(k, 0.0, i, i)
-        total = w
-        for c in range(size):
-            e[c] = w * strain[i, c]
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            if kind[j] != MOVING:
-                continue
-            w = mass[j] / rho[j] * pair_w(k, pair_distance(xc, i, j), i, j)
-            total += w
-            for c in range(size):
-                e[c] += w * strain[j, c]
-        norm = 0.0
-        for c in range(size):
-            norm += e[c] * e[c] if c < dim else 2.0 * e[c] * e[c]  # packed: the diagonal first
-        gamma_dot[i] = np.sqrt(2.0 * norm) / total
 
 
 @njit(cache=True)
