@@ -1,15 +1,23 @@
 """Measures of a layer flowing down a periodic slope (the case inclined_plane) against the uniform
-flow of 004_ Sec. 5.1 (references.inclined_plane_velocity), frame by frame, over dp-thick layers
-above the bed {y = 0}: for scripts/incline_layers.py and scripts/validate.py."""
+flow of 004_ Sec. 5.1 (references.inclined_plane_velocity) of the same grains, whose depth is the
+layer's at rest dilated to the uniform flow's volume fraction (``flow_depth``), frame by frame, over
+dp-thick layers above the bed {y = 0}: for scripts/incline_layers.py and scripts/validate.py."""
 
 import math
 
 import numpy as np
 
 from . import measure
-from .references import (inclined_plane_mean_velocity_with_viscosity, inclined_plane_surface_velocity,
-                         inclined_plane_velocity, inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
+from .references import (inclined_plane_flow_depth, inclined_plane_mean_velocity_with_viscosity,
+                         inclined_plane_surface_velocity, inclined_plane_velocity,
+                         inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
 from .tensors import unpacked
+
+
+def flow_depth(p, material):
+    """The depth of the uniform flow of the run's grains, laid at rest H deep
+    (references.inclined_plane_flow_depth) [m]."""
+    return inclined_plane_flow_depth(material, p["theta"], p["H"])
 
 
 def layer_speeds(frame, p, material):
@@ -17,7 +25,7 @@ def layer_speeds(frame, p, material):
     of the top over the analytical surface speed) of one frame; the analytical mean of
     u(z) ~ H^(3/2) - (H - z)^(3/2) over the depth is 3/5 of its surface value."""
     x, u = frame["x"], frame["v"][:, 0]
-    surface = inclined_plane_surface_velocity(material, p["theta"], p["H"], p["g"])
+    surface = inclined_plane_surface_velocity(material, p["theta"], flow_depth(p, material), p["g"])
     top = x[:, 1] > x[:, 1].max() - 0.5 * p["dp"]
     return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
 
@@ -26,7 +34,7 @@ def with_artificial_viscosity(p, material):
     """(nu, mean, surface) of the uniform flow with the shear viscosity nu of the run's alpha (004_
     Eq. 38; references.pair_viscosity_of_alpha, c0 the sound speed at rest) added to the law: its
     mean and surface speed over the analytical ones of ``layer_speeds``."""
-    theta, H, g = p["theta"], p["H"], p["g"]
+    theta, H, g = p["theta"], flow_depth(p, material), p["g"]
     nu = pair_viscosity_of_alpha(p["alpha"], p["h_factor"] * p["dp"], material.c0, 2)
     surface = inclined_plane_surface_velocity(material, theta, H, g)
     return (nu, inclined_plane_mean_velocity_with_viscosity(material, theta, H, g, nu) / (0.6 * surface),
@@ -59,10 +67,10 @@ def hydrostatic(frame, p):
 
 
 def profile_figures(frame, p, material):
-    """(L2 error of the layers' speed against u(z) at their heights clipped to [0, H], the layers'
-    mean pressure over their mean hydrostatic pressure, the same for s p) of one frame, over dp-thick
-    layers (measure.layer_means)."""
-    dp, theta, H, g = p["dp"], p["theta"], p["H"], p["g"]
+    """(L2 error of the layers' speed against u(z) at their heights clipped to [0, H], H the flow
+    depth, the layers' mean pressure over their mean hydrostatic pressure, the same for s p) of one
+    frame, over dp-thick layers (measure.layer_means)."""
+    dp, theta, H, g = p["dp"], p["theta"], flow_depth(p, material), p["g"]
     y, u = measure.layer_means(frame, dp, frame["v"][:, 0])
     _, pressure = measure.layer_means(frame, dp, frame["p"])
     _, carried = measure.layer_means(frame, dp, kernel_moment(frame)[0] * frame["p"])

@@ -112,6 +112,15 @@ def inclined_plane_velocity(material, theta_deg, H, g, z):
     return scale * (H**1.5 - (H - np.asarray(z, dtype=float)) ** 1.5)
 
 
+def inclined_plane_flow_depth(material, theta_deg, H_rest):
+    """Depth of the uniform flow (``inclined_plane_velocity``) of the grains of a layer laid at rest
+    ``H_rest`` deep, as cases/inclined_plane.py lays them (mpisph's derivation): the same mass per area
+    at the volume fraction phi_u of Eq. 8 instead of phi_max, H_rest phi_max / phi_u. The glass beads
+    at 25 deg dilate by 2.3 %, and u ~ H^(3/2) puts their surface 3.4 % faster than at H_rest."""
+    _, phi_u = material.uniform_flow(theta_deg)
+    return H_rest * material.phi_max / phi_u
+
+
 def inclined_plane_surface_velocity(material, theta_deg, H, g):
     """u(H) of ``inclined_plane_velocity``."""
     return float(inclined_plane_velocity(material, theta_deg, H, g, H))

@@ -7,8 +7,8 @@ frames, with the profile's L2 error over dp-thick layers and the layers' mean pr
 hydrostatic one (the grains' p, and s p, the share the pairs carry: see below); with alpha > 0, the
 speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it averages
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
-bed and prints, per layer: speed over the analytical u(z) (references), the shear rate 2 eps_xy
-over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
+bed and prints, per layer: speed over the analytical u(z) of the flow depth
+(incline_measures.flow_depth), the shear rate 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
 the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
 tan(theta), I over I_u (means of nonlinear functions of each particle's p, so biased where p
 scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
@@ -30,10 +30,11 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.incline_measures import (hydrostatic, kernel_moment, layer_speeds, profile_figures, weight_above,
-                                     with_artificial_viscosity)
+from mpisph.incline_measures import (flow_depth, hydrostatic, kernel_moment, layer_speeds, profile_figures,
+                                     weight_above, with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
+from mpisph.physics.mu_i_law import friction
 from mpisph.references import inclined_plane_velocity
 
 
@@ -58,10 +59,43 @@ def layer_table(frames, p, material):
     rows = []
     for k in sorted(sums):
         centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot = np.mean(sums[k], axis=0)
-        u_a = inclined_plane_velocity(material, p["theta"], p["H"], g, min(max(centre, 0.0), p["H"]))
+        depth = flow_depth(p, material)
+        u_a = inclined_plane_velocity(material, p["theta"], depth, g, min(max(centre, 0.0), depth))
         rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
         rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, carried / p_h,
                      mu / math.tan(theta), I / I_u, share, A_xy, rate / gamma_dot))
+    return rows
+
+
+def noise_table(frames, p, material):
+    """Rows (height, then over the layer's mean shear rate 2 eps_xy: the rms of the particles' volumetric
+    rate tr(eps) and of eps_xx - eps_yy; the alignment of the particles' own strain rates, 2 eps_xy over
+    the mean modulus of eps and of its deviator; the scatter of the law's pressure P = s p over its
+    layer mean; the layer's mean shear stress of the law mu(I) P, I = gamma_dot d / sqrt(P / rho_s0),
+    over that of the layer's mean P and gamma_dot) averaged over ``frames``: the noise the law's inputs
+    carry and what it costs (physics/mu_i.py, options law_strain_rate and law_pressure)."""
+    dp, m = p["dp"], material.params
+    sums = {}
+    for f in frames:
+        eps = f["strain"]
+        trace, normal_difference, shear = eps[:, 0] + eps[:, 1], eps[:, 0] - eps[:, 1], 2.0 * eps[:, 2]
+        full = np.sqrt(2.0 * (eps[:, 0] ** 2 + eps[:, 1] ** 2 + 2.0 * eps[:, 2] ** 2))
+        deviatoric = np.sqrt(normal_difference**2 + shear**2)  # sqrt(2 e':e'), e' = eps - tr(eps) / 2 I
+        P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
+        gamma_dot = f["gamma_dot"]
+        tau = np.array([friction(I, m) for I in gamma_dot * m.d0 / np.sqrt(np.maximum(P, 1e-300) / m.rho_s0)]) * P
+        layer = np.floor(f["x"][:, 1] / dp).astype(int)
+        for k in np.unique(layer):
+            s = layer == k
+            sums.setdefault(k, []).append((f["x"][s, 1].mean(), shear[s].mean(), np.mean(trace[s] ** 2),
+                                           np.mean(normal_difference[s] ** 2), full[s].mean(), deviatoric[s].mean(),
+                                           P[s].mean(), P[s].var(), tau[s].mean(), gamma_dot[s].mean()))
+    rows = []
+    for k in sorted(sums):
+        y, rate, trace2, difference2, full, deviatoric, P, P_var, tau, gamma_dot = np.mean(sums[k], axis=0)
+        at_mean = friction(gamma_dot * m.d0 / np.sqrt(P / m.rho_s0), m) * P if P > 0.0 else np.nan
+        rows.append((y, np.sqrt(trace2) / rate, np.sqrt(difference2) / rate, rate / full, rate / deviatoric,
+                     np.sqrt(P_var) / P, tau / at_mean))
     return rows
 
 
@@ -142,6 +176,10 @@ def main():
           f"{'s':>6} {'A_xy':>6} {'align':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
+    print(f"{'y [mm]':>7} {'tr/rate':>7} {'dif/rate':>8} {'align':>6} {'dev':>6} {'P scat':>6} {'tau/tau(P)':>10}   "
+          "(the law's inputs' noise)")
+    for row in noise_table(frames, p, material):
+        print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} {row[6]:10.4f}")
     if "T_visc" in frames[-1]:
         print(f"{'':7} {'shear traction / weight along the slope':^34}   "
               f"{'normal traction / weight normal to it':^34}")

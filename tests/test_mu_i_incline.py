@@ -13,7 +13,8 @@ import pytest
 from mpisph import incline_measures
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.references import INCLINED_PLANE_TABLE_2, inclined_plane_surface_velocity, inclined_plane_velocity
+from mpisph.references import (INCLINED_PLANE_TABLE_2, inclined_plane_flow_depth, inclined_plane_surface_velocity,
+                               inclined_plane_velocity)
 from mpirun import mpisph
 
 SMALL = ["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=8", "--set", "m_0=0.2"]
@@ -58,17 +59,22 @@ def test_grain_compressibility_puts_the_flow_at_mach_0_1(theta, speed):
 
 def test_incline_measures_read_the_uniform_flow_as_one():
     """The mean and surface speeds (incline_measures, as scripts/incline_layers.py prints them) of a
-    layer of particles moving with the analytical profile (dp-spaced rows, 004_ Sec. 5.1's glass
-    beads, H = 0.02 m) are 1 within the rows' sampling of the profile, its L2 error 0 and its
-    pressure the weight above; twice the profile and the pressure give 2, 1 and 2."""
+    layer of particles moving with the analytical profile (004_ Sec. 5.1's glass beads laid at rest
+    H = 0.02 m deep in dp-spaced rows, flowing uniformly: the rows spread over the flow depth
+    H phi_max / phi_u, references.inclined_plane_flow_depth) are 1 within the rows' sampling of the
+    profile, its L2 error 0 and its pressure the weight above; twice the profile and the pressure
+    give 2, 1 and 2."""
     module = load_case_module("inclined_plane")
     p = resolve_params(module, {"H": "0.02", "dp": "0.0005", "columns": "4"})
     material = build_case(module, p).material
-    y = np.repeat((np.arange(40) + 0.5) * 0.0005, 4)
-    u = np.array([inclined_plane_velocity(material, 25.0, 0.02, 9.81, z) for z in y])
+    depth = inclined_plane_flow_depth(material, 25.0, 0.02)
+    _, phi_u = material.uniform_flow(25.0)
+    assert depth == pytest.approx(0.02 * material.phi_max / phi_u, rel=1e-14)
+    y = np.repeat((np.arange(40) + 0.5) * 0.0005 * depth / 0.02, 4)
+    u = np.array([inclined_plane_velocity(material, 25.0, depth, 9.81, z) for z in y])
     x = np.stack([np.tile((np.arange(4) + 0.5) * 0.0005, 40), y], axis=1)
     mass = np.full(len(y), 2.0e-4)
-    rows_above = 40 - np.floor(y / 0.0005) - 0.5  # the rows above a row's centre, half its own
+    rows_above = 40 - np.arange(40).repeat(4) - 0.5  # the rows above a row's centre, half its own
     pressure = rows_above * 4 * 2.0e-4 * 9.81 * math.cos(math.radians(25.0)) / (4 * 0.0005)  # their weight
     B = np.tile([1.0 / 0.9, 1.0 / 0.9, 0.0], (len(y), 1))  # A = 0.9 I: the pairs carry 0.9 p
     for scale in (1.0, 2.0):
@@ -77,7 +83,7 @@ def test_incline_measures_read_the_uniform_flow_as_one():
         mean, surface = incline_measures.layer_speeds(frame, p, material)
         assert mean == pytest.approx(scale, rel=0.01)
         assert surface == pytest.approx(scale, rel=0.02)
-        assert incline_measures.weight_above(frame, p, [0.0, 0.02]) == pytest.approx(
+        assert incline_measures.weight_above(frame, p, [0.0, depth]) == pytest.approx(
             [160 * 2.0e-4 * 9.81 * math.cos(math.radians(25.0)) / (4 * 0.0005), 0.0], rel=1e-12, abs=1e-12)
         l2, grains, carried = incline_measures.profile_figures(frame, p, material)
         assert l2 == pytest.approx(scale - 1.0, abs=1e-12)
