@@ -24,6 +24,7 @@ from mpisph import incline_measures, measure, references  # noqa: E402
 from mpisph.case import build_case, load_case_module, resolve_params  # noqa: E402
 from mpisph.compare import measures as compare_measures  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
+from mpisph.granular_flow import CONSISTENT_MU_I  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
 from mpisph.kernels import Kernel  # noqa: E402
@@ -771,10 +772,6 @@ def inclined_plane(ranks):
             "Eq. 27's pair viscosity delivers 81-92 % of div(eta grad v) on lattices (tests/test_mu_i_law.py), "
             "which the law magnifies about eightfold near I_u.")
     return "Inclined plane (004_ Sec. 5.1)", cmd, rows, image, note
-
-
-CONSISTENT_MU_I = ("viscous_form=corrected_stress", "viscous_step=implicit", "pressure_form=isotropic",
-                   "law_pressure=carried_mean", "law_strain_rate=deviatoric_kernel_mean")  # docs/INCLINE.md
 
 
 def _steady_incline(ranks, name, sets, t_end, steady, interval, alphas):
