@@ -821,13 +821,13 @@ def _steady_incline(ranks, name, sets, t_end, steady, interval, alphas):
             ax[0].plot(references.inclined_plane_velocity_with_viscosity(material, theta, depth, g, nu, z), z, "k:",
                        label=f"uniform flow with nu = alpha h c0 / 8 added, {label}")
         layers = [measure.layer_means(f, params["dp"], f["v"][:, 0]) for f in late]
-        depth = min(len(y) for y, _ in layers)
-        height = np.mean([y[:depth] for y, _ in layers], axis=0)
-        ax[0].plot(np.mean([u[:depth] for _, u in layers], axis=0), height, "o-", ms=3,
+        kept = min(len(y) for y, _ in layers)  # the layers every frame has
+        height = np.mean([y[:kept] for y, _ in layers], axis=0)
+        ax[0].plot(np.mean([u[:kept] for _, u in layers], axis=0), height, "o-", ms=3,
                    label=f"mpisph, {label}, mean of the frames {span}")
-        share = [measure.layer_means(f, params["dp"], incline_measures.kernel_moment(f)[0] * f["p"])[1][:depth]
+        share = [measure.layer_means(f, params["dp"], incline_measures.kernel_moment(f)[0] * f["p"])[1][:kept]
                  for f in late]
-        weight = [incline_measures.hydrostatic(f, params)[:depth] for f in late]
+        weight = [incline_measures.hydrostatic(f, params)[:kept] for f in late]
         ax[1].plot(np.mean(weight, axis=0), height, "--", label=f"weight of the grains above, {label}")
         ax[1].plot(np.mean(share, axis=0), height, "o-", ms=3, label=f"s p, the pressure the pairs carry, {label}")
         ax[2].plot(diag["t"], speed, label=f"mpisph, {label}")
