@@ -85,8 +85,8 @@ deviator e - tr(e) / D I instead. Why: 004_'s constitutive frame (Eq. 4, after L
 Lifshitz) puts the shear viscosity on the deviator of eps and the volume change on a bulk
 viscosity; the modulus of Eq. 6 is that of the deviator wherever the flow is incompressible, as
 the law was measured. The weakly compressible grains' volumetric rate div v is acoustic noise
-that the law would count as shear: in the steady incline its rms is 0.10-0.13 of the shear rate
-at H/dp = 20 and 0.25-0.31 at H/dp = 40 (a pressure noise of a given size has a velocity noise
+that the law would count as shear: in the bulk of the steady incline its rms is 0.10-0.18 of the
+shear rate at H/dp = 20 and 0.13-0.32 at H/dp = 40 (a pressure noise of a given size has a velocity noise
 of a given size, whose gradient grows as 1/dp), and it is what the kernel mean leaves of the
 misalignment (docs/INCLINE.md). The deviator is that of the model's D dimensions, whose pressure
 is the mean of its D normal stresses. The viscous stress keeps the whole of eps: its isotropic
@@ -98,7 +98,7 @@ s p (kernel_mean.py) and forms I from it (Eq. 6), where the grains' own pressure
 mu(I) P = mu_s P + (mu_2 - mu_s) P I / (I + I_0), I proportional to P^(-1/2), is concave in P:
 over a pressure that scatters by a relative variance sigma^2 about its mean it delivers the
 fraction 1 - sigma^2 I_0 (3 I + I_0) / (8 (I + I_0)^2) of the mu_2 - mu_s part of the stress at the
-mean pressure. The grains' pressures of the steady incline scatter by 0.5-0.75 of their layer's mean
+mean pressure. The grains' pressures of the steady incline scatter by 0.35-0.76 of their layer's mean
 (a grain-density scatter of 1e-3 is 63 Pa at K_t = 1.6e-5 1/Pa, where the weight at
 mid-depth of the CI-sized layer is about 130 Pa), which costs the mean shear stress about
 1 % at I_u, turned eightfold into shear rate by the law; the kernel mean takes the scatter out.
