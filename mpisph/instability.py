@@ -147,6 +147,13 @@ def _with_periodic_images(x, arrays, lo, lengths, radius):
     return x, arrays
 
 
+def spacing(frame):
+    """The particle spacing dp of ``frame``: the median of its moving particles' volumes m / rho, to the
+    power 1 / D."""
+    moving = frame["kind"] == MOVING
+    return float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / frame["x"].shape[1])))
+
+
 def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
     """{n, dp, clustering, inner_voids, surface, min_spacing, fragments, detached} from
     ``read_frame(path, walls=True)``.
@@ -158,7 +165,7 @@ def tensile_instability(frame, domain_lo=None, periodic_lengths=()):
     dim = x.shape[1]
     moving = kind == MOVING
     n_moving = int(moving.sum())
-    dp = float(np.median((mass[moving] / rho[moving]) ** (1.0 / dim)))
+    dp = spacing(frame)
     kernel = Kernel(frame["params"].get("kernel", "wendland_c2"), frame["params"].get("h_factor", 1.3) * dp, dim)
     h = kernel.h
     order = np.argsort(~moving, kind="stable")  # moving particles first: they get lists

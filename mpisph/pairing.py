@@ -17,7 +17,7 @@ that has mixed they do not, and the measure says nothing.
 import numpy as np
 from numba import njit
 
-from .instability import CLUSTER_DISTANCE, LINK_DISTANCE
+from .instability import CLUSTER_DISTANCE, LINK_DISTANCE, spacing
 from .materials import ElasticConstants
 from .neighbours import neighbour_lists
 from .particles import MOVING
@@ -32,11 +32,9 @@ def applies(case):
 
 
 def _moving(frame):
-    """(positions, global ids, kinds, spacing dp from the volumes) of the moving particles of ``frame``."""
+    """(positions, global ids, kinds, spacing dp) of the moving particles of ``frame``."""
     moving = frame["kind"] == MOVING
-    dim = frame["x"].shape[1]
-    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
-    return frame["x"][moving], frame["gid"][moving], frame["kind"][moving], dp
+    return frame["x"][moving], frame["gid"][moving], frame["kind"][moving], spacing(frame)
 
 
 @njit(cache=True)
@@ -75,14 +73,19 @@ def _rows_of(gids, among):
     return order[np.searchsorted(among, gids, sorter=order)]
 
 
-def clustered_pairs(frame):
-    """(i, j): each moving particle of ``frame`` with another moving particle nearer than dp/2, and
-    that nearest one, as indices into ``frame``."""
-    x, gid, kind, dp = _moving(frame)
-    start, nbr = neighbour_lists(x, gid, kind, len(x), CLUSTER_DISTANCE * dp, x.min(axis=0))
-    partner = np.empty(len(x), np.int64)
-    nearest_partners(len(x), start, nbr, x, partner)
-    rows = np.flatnonzero(frame["kind"] == MOVING)
+def clustered_pairs(frame, walls=False):
+    """(i, j): each moving particle of ``frame`` with another moving particle (or, with ``walls``, any
+    particle) nearer than dp/2, and that nearest one, as indices into ``frame``."""
+    moving = frame["kind"] == MOVING
+    rows = np.flatnonzero(moving)
+    n = len(rows)
+    if walls:
+        rows = np.concatenate([rows, np.flatnonzero(~moving)])  # moving first: they get lists
+    x = frame["x"][rows]
+    start, nbr = neighbour_lists(x, frame["gid"][rows], frame["kind"][rows], n, CLUSTER_DISTANCE * spacing(frame),
+                                 x.min(axis=0))
+    partner = np.empty(n, np.int64)
+    nearest_partners(n, start, nbr, x, partner)
     mine = np.flatnonzero(partner >= 0)
     return rows[mine], rows[partner[mine]]
 

@@ -12,6 +12,7 @@ import os
 import numpy as np
 
 from .errors import InputError
+from .instability import spacing
 from .io.frames import frame_time, list_frames, read_frame
 from .particles import MOVING
 
@@ -90,7 +91,7 @@ def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", la
         moving = f["kind"] == MOVING
         if field not in f:
             raise InputError(f"the frames in {out_dir} have no field {field!r}")
-        dp = float(np.median((f["mass"][moving] / f["rho"][moving]) ** (1.0 / 3.0)))
+        dp = spacing(f)
         a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
         near = dist < 0.5 * dp
         cuts.append((a[near], b[near], np.asarray(f[field][moving])[near], dp))

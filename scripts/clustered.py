@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from mpisph import pairing, surface
-from mpisph.instability import CLUSTER_DISTANCE
+from mpisph.instability import spacing
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING
@@ -30,26 +30,10 @@ CLASSES = ("inner", "near-surface", "outermost", "splashed")
 
 
 def _moving_first(frame):
-    """(dp from the moving particles' volumes, the order that puts moving particles first, their count):
-    the neighbour lists are built for the first rows."""
+    """(dp, the order that puts moving particles first, their count): the neighbour lists are built
+    for the first rows."""
     moving = frame["kind"] == MOVING
-    dim = frame["x"].shape[1]
-    dp = float(np.median((frame["mass"][moving] / frame["rho"][moving]) ** (1.0 / dim)))
-    return dp, np.argsort(~moving, kind="stable"), int(moving.sum())
-
-
-def clustered_pairs(frame):
-    """(dp, indices of the clustered moving particles, index of each one's nearest partner)."""
-    dp, order, n_moving = _moving_first(frame)
-    xs = frame["x"][order]
-    start, nbr = neighbour_lists(xs, frame["gid"][order], frame["kind"][order], n_moving, CLUSTER_DISTANCE * dp,
-                                 xs.min(axis=0))
-    mine = np.flatnonzero(np.diff(start) > 0)
-    partner = np.empty(len(mine), np.int64)
-    for k, i in enumerate(mine):  # the clustered particles only
-        js = nbr[start[i]:start[i + 1]]
-        partner[k] = js[np.argmin(np.linalg.norm(xs[js] - xs[i], axis=1))]
-    return dp, order[mine], order[partner]
+    return spacing(frame), np.argsort(~moving, kind="stable"), int(moving.sum())
 
 
 def shifted_on_the_surface(frame):
@@ -88,7 +72,8 @@ def pair_stress(frame, i, j):
 def describe(path):
     frame = read_frame(path, walls=True)
     dim = frame["x"].shape[1]
-    dp, i, j = clustered_pairs(frame)
+    dp = spacing(frame)
+    i, j = pairing.clustered_pairs(frame, walls=True)
     n = int(np.sum(frame["kind"] == MOVING))
     print(f"{path}: t = {frame['t']:.4g} s, {len(i)} of {n} moving particles clustered ({100 * len(i) / n:.3f} %)")
     if not len(i):

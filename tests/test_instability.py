@@ -4,9 +4,9 @@ lattice, in 2D and 3D."""
 import numpy as np
 import pytest
 
-from mpisph.instability import tensile_instability
+from mpisph import pairing
+from mpisph.instability import spacing, tensile_instability
 from mpisph.launch import mpirun_mpisph
-from repo_script import load_script
 
 
 def lattice_frame(n=30, dp=0.01, remove=None, squeeze=(), dim=2):
@@ -87,11 +87,11 @@ def test_a_periodic_axis_joins_the_pieces_across_its_ends(dim):
     assert m["fragments"] == 1 and m["detached"] == 0.0
 
 
-def test_the_clustered_script_finds_the_same_pairs():
-    clustered = load_script("clustered")
+def test_the_clustered_pairs_with_walls_are_the_squeezed_ones():
+    """pairing.clustered_pairs(walls=True), what scripts/clustered.py describes."""
     frame = lattice_frame(squeeze=[100, 200, 300])
-    dp, i, j = clustered.clustered_pairs(frame)
-    assert dp == pytest.approx(0.01)
+    i, j = pairing.clustered_pairs(frame, walls=True)
+    assert spacing(frame) == pytest.approx(0.01)
     assert sorted(i) == [100, 130, 200, 230, 300, 330]  # each squeezed particle and its right-hand neighbour
     assert all(abs(a - b) == 30 for a, b in zip(i, j))
 
