@@ -8,8 +8,8 @@ hydrostatic one (the grains' p, and s p, the share the pairs carry: see below); 
 speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it averages
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
 bed and prints, per layer: speed over the analytical u(z) of the flow depth
-(incline_measures.flow_depth), the shear rate 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of the grains above
-the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
+(incline_measures.flow_depth), the shear rate 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d,
+pressure over p_h (the weight of the grains above the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
 tan(theta), I over I_u (means of nonlinear functions of each particle's p, so biased where p
 scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
@@ -83,7 +83,8 @@ def noise_table(frames, p, material):
         deviatoric = np.sqrt(normal_difference**2 + shear**2)  # sqrt(2 e':e'), e' = eps - tr(eps) / 2 I
         P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
         gamma_dot = f["gamma_dot"]
-        tau = np.array([friction(I, m) for I in gamma_dot * m.d0 / np.sqrt(np.maximum(P, 1e-300) / m.rho_s0)]) * P
+        # friction's Python source takes arrays as well as numbers
+        tau = friction.py_func(gamma_dot * m.d0 / np.sqrt(np.maximum(P, 1e-300) / m.rho_s0), m) * P
         layer = np.floor(f["x"][:, 1] / dp).astype(int)
         for k in np.unique(layer):
             s = layer == k
@@ -179,7 +180,8 @@ def main():
     print(f"{'y [mm]':>7} {'tr/rate':>7} {'dif/rate':>8} {'align':>6} {'dev':>6} {'P scat':>6} {'tau/tau(P)':>10}   "
           "(the law's inputs' noise)")
     for row in noise_table(frames, p, material):
-        print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} {row[6]:10.4f}")
+        print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} "
+              f"{row[6]:10.4f}")
     if "T_visc" in frames[-1]:
         print(f"{'':7} {'shear traction / weight along the slope':^34}   "
               f"{'normal traction / weight normal to it':^34}")

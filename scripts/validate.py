@@ -759,7 +759,8 @@ def inclined_plane(ranks):
             "speed as 004_ Sec. 5.1 says (1.3e-7 1/Pa; Table 2 prints 1.5e-5, which puts that flow at Mach 1.1). Layers are dp-thick bins of the last "
             "frame; the surface velocity is the mean of the top layer; the analytical profile takes "
             "incompressible grains and no regularisation, and the depth of the uniform flow of the same grains, "
-            "H phi_max / phi_u (references.inclined_plane_flow_depth: 2.3 % deeper than at rest). An open gap (issue 14): no variant reaches the "
+            "H phi_max / phi_u (references.inclined_plane_flow_depth: 2.3 % deeper than at rest). An open gap "
+            "(issue 14): no variant reaches the "
             "analytical flow. Without artificial viscosity the layers still accelerate at 6.5 s (the trend rows); "
             "with Eq. 37's harmonic mean a grain leaves the layer at 6.03 s (the grains at the free surface have "
             "no friction, mu_i_law.pair_viscosity), and the rows for it are read at the frame before. With "
@@ -845,7 +846,8 @@ OPTIONS_NOTE = ("The options are departures from 004_, each with a derivation an
                 "particles' jostle biases the modulus of each particle's own, and the grains' volumetric rate is "
                 "acoustic noise, not shear: 004_ Eq. 4 puts the shear viscosity on the deviator). The analytical "
                 "flow is that of the same grains, whose depth is the layer's at rest dilated from phi_max to phi_u "
-                "(references.inclined_plane_flow_depth: 2.3 % deeper, its surface 3.4 % faster). The pressures are against the weight of the grains above each layer's mean height, each "
+                "(references.inclined_plane_flow_depth: 2.3 % deeper, its surface 3.4 % faster). The pressures "
+                "are against the weight of the grains above each layer's mean height, each "
                 "grain a slab dp thick (incline_measures.weight_above), as the layer dilates above H. ")
 
 
@@ -867,7 +869,8 @@ def inclined_plane_steady(ranks):
             "viscosity) is the dotted line and its rows; the pair form delivers about 81 % of it on a "
             "lattice at h = 1.3 dp (tests/test_mu_i_law.py). Figures are means over the frames from 8 s (about "
             "6 T), every 0.05 s: the layers' mean pressure swings by about 7 % from frame to frame with the "
-            "layer's acoustic modes (docs/INCLINE.md), so a few frames cannot tell its mean to 2 %. Without alpha the layer's profile follows the analytical one within about 1 % from the second "
+            "layer's acoustic modes (docs/INCLINE.md), so a few frames cannot tell its mean to 2 %. Without "
+            "alpha the layer's profile follows the analytical one within about 1 % from the second "
             "spacing above the bed up to the top two (docs/INCLINE.md); the first spacing slides on the bed at "
             "about 1.5 times the analytical speed there, which lifts the mean speed by about 1 %. The grains' "
             "pressure sits above the weight by the share 1 - s that the pairs do not carry.")
