@@ -33,12 +33,12 @@ from pathlib import Path
 import numpy as np
 
 from mpisph.barrier_load import BarrierLoad
-from mpisph.case import Body, Case, DruckerPrager, Front, Param, Wall, limiter_param
+from mpisph.case import Body, Case, Front, Param, Wall, limiter_param
 from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
 from mpisph.lattice import Frame
 from mpisph.meshes import fill, read_surface, wall_layers
-from mpisph.soil import soil_params, stress_diffusion_param
+from mpisph.soil import drucker_prager, soil_params, stress_diffusion_param
 
 GEOMETRY = Path(__file__).resolve().parent / "flume"
 WALLS = ("chute", "chute_sides", "runout", "runout_sides", "barrier")  # STL files; floors before sides
@@ -93,7 +93,7 @@ def setup(p):
         dim=3,
         domain=(lo, hi),
         dp=p.dp,
-        material=DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi),
+        material=drucker_prager(p),
         scheme="riemann_granular",
         scheme_options={"limiter": p.limiter, "stress_diffusion": p.stress_diffusion},
         bodies=[Body("soil", fill(soil, p.dp, slope))],

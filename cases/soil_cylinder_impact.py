@@ -8,10 +8,10 @@ maximum spread (002_ Fig. 10) is twice the front.
 
 import numpy as np
 
-from mpisph.case import SOLID_PARAMS, Body, Case, DruckerPrager, Front, Param, Wall
+from mpisph.case import SOLID_PARAMS, Body, Case, Front, Param, Wall
 from mpisph.geometry import bed_layers, depth, disk, support_layers
 from mpisph.kernels import KERNELS
-from mpisph.soil import scheme_choice, scheme_params
+from mpisph.soil import drucker_prager, scheme_choice, scheme_params
 
 PARAMS = {
     "D": Param(0.05, "m", "diameter of the cylinder", positive=True),
@@ -37,7 +37,7 @@ PARAMS = {
 
 def setup(p):
     radius = 0.5 * p.D
-    soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
+    soil = drucker_prager(p)
     x = disk((0.0, p.gap + radius), radius, p.dp, "the cylinder")
     half_floor = 2.0 * p.D  # the spread levels off at about twice the diameter (002_ Fig. 10)
     floor = bed_layers((-half_floor,), (half_floor,), p.dp, support_layers(p.h_factor))

@@ -16,6 +16,11 @@ from .geometry import block, depth_outside, lattice_mismatch, support_layers, wa
 from .physics.drucker_prager import INITIAL_STRESSES, STRESS_DIFFUSIONS, geostatic_stress
 
 
+def drucker_prager(p):
+    """The Drucker-Prager soil of the parameters ``p`` (those of ``soil_params``, by attribute)."""
+    return DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
+
+
 def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none", at_rest=True):
     """Typed parameters of the soil with the given defaults, plus gravity, the density
     reinitialisation and the solid scheme's; ``at_rest``: also the profile of the initial stress
@@ -95,7 +100,7 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None)
     1 - sin phi if None); the domain reaches one block height above the block's top. A side of the
     block that is not a whole number of spacings is warned: its fill falls short of it."""
     dim = len(lo)
-    soil = DruckerPrager(rho0=p.rho0, E=p.E, nu=p.nu, cohesion=p.cohesion, phi=p.phi, psi=p.psi)
+    soil = drucker_prager(p)
     height, top = hi[-1] - lo[-1], hi[-1]
     layers = support_layers(p.h_factor)
     up = "+" + "xyz"[dim - 1]

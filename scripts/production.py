@@ -19,6 +19,7 @@ not there yet.
 import argparse
 import re
 from pathlib import Path
+from types import SimpleNamespace
 
 import matplotlib
 
@@ -26,16 +27,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mpisph import render  # noqa: E402
-from mpisph.case import DruckerPrager  # noqa: E402
+from mpisph import pairing, render  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
 from mpisph.launch import mpirun_mpisph  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
+from mpisph.soil import drucker_prager  # noqa: E402
 
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
-from clustered import CLASSES, beside_an_edge, clustered_pairs, shifted_on_the_surface  # noqa: E402  (this directory)
+from clustered import CLASSES, beside_an_edge, shifted_on_the_surface  # noqa: E402  (this directory)
 from validate import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -133,7 +134,7 @@ def instability_table(variants):
 
 def clustered_summary(frame):
     """What the clustered particles of ``frame`` are: by free-surface class, and how many in tension."""
-    _, i, _ = clustered_pairs(frame)
+    i, _ = pairing.clustered_pairs(frame, walls=True)
     counts = np.bincount(frame["surface"][i], minlength=len(CLASSES))
     return (f"at t = {frame['t']:.1f} s, {len(i)} clustered: "
             + ", ".join(f"{c} {name}" for name, c in zip(CLASSES, counts))
@@ -339,9 +340,8 @@ EARLY = (0.1, 0.2, 0.3, 0.5)  # the times the band's start is followed at [s]
 
 
 def soil_of(params):
-    """The Drucker-Prager soil of the run ``params``."""
-    return DruckerPrager(rho0=params["rho0"], E=params["E"], nu=params["nu"], cohesion=params["cohesion"],
-                         phi=params["phi"], psi=params["psi"])
+    """The Drucker-Prager soil of the run ``params`` (a frame's, by name)."""
+    return drucker_prager(SimpleNamespace(**params))
 
 
 def yield_depth(params, lateral):
