@@ -438,7 +438,7 @@ class MuIScheme(Scheme):
                     self.beta_max, B if self.corrected else self._no_B, ctx.kernel.params, pa.strain, pa.gamma_dot)
         if self.smoothed_rate:
             ctx.refresh(["strain"])
-            mean_strain = np.empty_like(pa.strain)
+            mean_strain = ctx.workspace.get("law_mean_strain", n, pa.strain.shape[1:])
             kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, pa.strain, ctx.kernel.params,
                         mean_strain)
             rate_modulus(n, pa.kind, mean_strain, self.deviatoric_rate, self.dim, pa.gamma_dot)
@@ -447,7 +447,7 @@ class MuIScheme(Scheme):
                        self.params, law_p)
         if self.smoothed_pressure:
             ctx.refresh(["law_pressure"])
-            mean_p = np.empty((n, 1))
+            mean_p = ctx.workspace.get("law_mean_pressure", n, (1,))
             kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, law_p.reshape(-1, 1),
                         ctx.kernel.params, mean_p)
             law_p[:n] = mean_p[:, 0]
