@@ -767,7 +767,7 @@ def inclined_plane(ranks):
             "004_'s alpha = 0.05 the layers are nearly steady, at a fifth of the analytical surface speed or less. "
             "From rest no layer can be steady by 6.5 s: under the unregularised law (friction at least mu_s "
             "everywhere) the mean speed grows by at most g (sin theta - mu_s cos theta) = 0.75 m/s^2, so it "
-            "needs at least 10 s to reach the analytical mean of 7.7 m/s. Near the uniform flow the layer "
+            "needs at least 10 s to reach the analytical mean of 7.9 m/s. Near the uniform flow the layer "
             "relaxes with a time of 15 s at H = 0.1 m (references.inclined_plane_relaxation_time). docs/INCLINE.md "
             "has the CI-sized layer (H = 0.02 m) that does reach a steady state, and where it falls short: "
             "Eq. 27's pair viscosity delivers 81-92 % of div(eta grad v) on lattices (tests/test_mu_i_law.py), "
