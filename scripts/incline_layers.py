@@ -20,8 +20,11 @@ step, not of those the kick solved for), and the script also splits the shear an
 traction across the planes between the layers into the pressure pairs (with
 pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
 momentum the particles carry across (m u' v', m v' v'), each over the weight's component along the
-slope and normal to it: in a steady layer each three add up to 1. Frames must be close in time
-(an output interval of about 0.05 s) for the averages to settle.
+slope and normal to it: in a steady layer each three add up to 1. A table of the viscous stress's
+normal part follows (bulk_table): the bulk viscosity that 2 eta eps gives the grains carries a mean
+stress where eta and the grains' change of volume correlate, and the corrected gradient's trace,
+unlike the continuity equation's divergence, has a mean in a sheared layer. Frames must be close in
+time (an output interval of about 0.05 s) for the averages to settle.
 """
 
 import argparse
@@ -97,6 +100,34 @@ def noise_table(frames, p, material):
         at_mean = friction(gamma_dot * m.d0 / np.sqrt(P / m.rho_s0), m) * P if P > 0.0 else np.nan
         rows.append((y, np.sqrt(trace2) / rate, np.sqrt(difference2) / rate, rate / full, rate / deviatoric,
                      np.sqrt(P_var) / P, tau / at_mean))
+    return rows
+
+
+def bulk_table(frames, p):
+    """Rows (height, then over the layer's mean s p: the mean normal viscous stress 2 eta eps_yy, the
+    mean of its isotropic part eta tr(eps) (2 eta eps's in 2D), and the share of that in the layer's
+    mean eta times its mean tr(eps), the rest being their covariance; then over the layer's mean shear
+    rate 2 eps_xy: the mean tr(eps) of the corrected gradient and the mean -(drho/dt) / rho of the
+    continuity equation, Eq. 26) averaged over ``frames``: the bulk viscosity that the stress
+    2 eta eps gives the grains, and the mean stress it carries in a steady layer (physics/mu_i.py)."""
+    dp = p["dp"]
+    sums = {}
+    for f in frames:
+        eps, eta = f["strain"], f["eta"]
+        trace = eps[:, 0] + eps[:, 1]
+        P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
+        continuity = -f["drho_dt"] / f["rho"]
+        layer = np.floor(f["x"][:, 1] / dp).astype(int)
+        for k in np.unique(layer):
+            s = layer == k
+            sums.setdefault(k, []).append((f["x"][s, 1].mean(), P[s].mean(), 2.0 * eps[s, 2].mean(),
+                                           np.mean(2.0 * eta[s] * eps[s, 1]), np.mean(eta[s] * trace[s]),
+                                           eta[s].mean() * trace[s].mean(), trace[s].mean(),
+                                           continuity[s].mean()))
+    rows = []
+    for k in sorted(sums):
+        y, P, rate, normal, isotropic, means, trace, continuity = np.mean(sums[k], axis=0)
+        rows.append((y, normal / P, isotropic / P, means / P, trace / rate, continuity / rate))
     return rows
 
 
@@ -182,6 +213,11 @@ def main():
     for row in noise_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} "
               f"{row[6]:10.4f}")
+    if "drho_dt" in frames[-1]:
+        print(f"{'y [mm]':>7} {'2eta e_yy':>9} {'eta tr':>7} {'of means':>8} {'tr/rate':>8} {'cont/rate':>9}   "
+              "(the bulk viscosity of 2 eta eps: stresses over s p)")
+        for row in bulk_table(frames, p):
+            print(f"{1e3 * row[0]:7.2f} {row[1]:+9.4f} {row[2]:+7.4f} {row[3]:+8.4f} {row[4]:+8.4f} {row[5]:+9.4f}")
     if "T_visc" in frames[-1]:
         print(f"{'':7} {'shear traction / weight along the slope':^34}   "
               f"{'normal traction / weight normal to it':^34}")
