@@ -979,6 +979,7 @@ def lube_collapse_2d(ranks):
     for channel, (n, spread) in references.PLANAR_RUNOUT_EXPONENTS.items():
         rows.append((f"high-a exponent against Balmforth & Kerswell's {channel} ({n:g} +- {spread:g})",
                      f"{exponent:.2f}", f"{n:g}", f"{exponent - n:+.2f}", "-"))
+    rows += _consistent_collapses(a, L0, dp, ranks)
     image = save(fig, "lube_collapse_2d.png")
     note = ("Runs with the cases' defaults: the implicit viscous kick (`viscous_step=explicit` is the paper's "
             "scheme) and the secant pair viscosity (`viscosity_mean=harmonic` is Eq. 37 as printed; "
@@ -997,8 +998,32 @@ def lube_collapse_2d(ranks):
             "a = 4, where a grain at the edge still moves); ten times larger m_0 (the implicit "
             "kick makes it no slower) keeps the top of the a = 0.5 column and stops its edge, but shortens the "
             "runout (the rows 'with m_0 = 12 s'); (3) the top of the a = 1 column sinks by a fifth, where "
-            "Lube's stays put below a = 1.15. The explicit step of Eq. 39 gives the implicit kick's runout.")
+            "Lube's stays put below a = 1.15. The explicit step of Eq. 39 gives the implicit kick's runout. "
+            "The rows 'CONSISTENT_MU_I' run the same five columns with granular_flow.CONSISTENT_MU_I, the options "
+            "that bring the CI-sized incline to its uniform flow (the corrected stress taken implicitly, the "
+            "isotropic pressure, the law's kernel means of s p and of the strain rate's deviator; "
+            "docs/INCLINE.md).")
     return "Planar collapses of sand columns, mu(I) (004_ Sec. 5.2, Lube et al. 2005)", runs[0]["cmd"], rows, image, note
+
+
+def _consistent_collapses(aspects, L0, dp, ranks):
+    """Rows of the planar collapses of ``aspects`` with the options of granular_flow.CONSISTENT_MU_I
+    (which bring the incline to its uniform flow): runout ratios, rest, the fitted slope and exponent."""
+    runs = [_collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=CONSISTENT_MU_I) for a in aspects]
+    a = np.array([r["a"] for r in runs])
+    ratio = np.array([r["ratio"] for r in runs])
+    rows = [("CONSISTENT_MU_I: (L_inf - L_0) / L_0 at a = " + ", ".join(f"{x:g}" for x in a),
+             " / ".join(f"{x:.2f}" for x in ratio),
+             " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in a), "-", "-"),
+            ("CONSISTENT_MU_I: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
+             f"<= {REST:g}", "-", "-")]
+    low, high = a <= 1.0, a >= 4.0
+    slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
+    exponent = float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
+    return rows + [("CONSISTENT_MU_I: low-a slope (a = 0.5, 1)", f"{slope:.2f}", "1.2", f"{slope - 1.2:+.2f}", "0.25",
+                    abs(slope - 1.2) <= 0.25),
+                   ("CONSISTENT_MU_I: high-a exponent (a = 4, 6)", f"{exponent:.2f}", "0.67", f"{exponent - 0.67:+.2f}",
+                    "0.1", abs(exponent - 0.67) <= 0.1)]
 
 
 LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 40, 2.75: 44}  # H_0 / dp of each column: a whole number of layers
