@@ -23,7 +23,7 @@ momentum the particles carry across (m u' v', m v' v'), each over the weight's c
 slope and normal to it: in a steady layer each three add up to 1. A table of the viscous stress's
 normal part follows (bulk_table): the bulk viscosity that 2 eta eps gives the grains carries a mean
 stress where eta and the grains' change of volume correlate, and the corrected gradient's trace,
-unlike the continuity equation's divergence, has a mean in a sheared layer. Frames must be close in
+unlike the uncorrected one's and the continuity equation's divergence, has a mean in a sheared layer. Frames must be close in
 time (an output interval of about 0.05 s) for the averages to settle.
 """
 
@@ -37,7 +37,9 @@ from mpisph.incline_measures import (flow_depth, hydrostatic, kernel_moment, lay
                                      weight_above, with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
+from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i_law import friction
+from mpisph.physics.viscous_stress import strain_rate
 from mpisph.references import inclined_plane_velocity
 
 
@@ -103,18 +105,37 @@ def noise_table(frames, p, material):
     return rows
 
 
+def uncorrected_trace(frame, p):
+    """tr(M_i) of each particle: the velocity's divergence by the gradient of Eq. 31 without the
+    correction B, recomputed with the periodic images along the slope. The frames hold no wall
+    particles, so within a kernel support of the bed it lacks the walls' partners."""
+    dp, length = p["dp"], p["columns"] * p["dp"]
+    kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
+    x = frame["x"].copy()
+    x[:, 0] %= length
+    n = len(x)
+    x = np.concatenate([x, x + [length, 0.0], x - [length, 0.0]])
+    kind, mass, rho, v = (np.concatenate([frame[name]] * 3) for name in ("kind", "mass", "rho", "v"))
+    start, nbr = neighbour_lists(x, np.arange(len(x)), kind, n, kernel.support, x.min(axis=0) - dp)
+    eps = np.zeros((len(x), 3))
+    strain_rate(n, start, nbr, x, v, rho, mass, kind, np.zeros_like(x), np.zeros(len(x)), 0.0, np.zeros((0, 1)),
+                kernel.params, eps, np.zeros(len(x)))
+    return eps[:n, 0] + eps[:n, 1]
+
+
 def bulk_table(frames, p):
     """Rows (height, then over the layer's mean s p: the mean normal viscous stress 2 eta eps_yy, the
     mean of its isotropic part eta tr(eps) (2 eta eps's in 2D), and the share of that in the layer's
     mean eta times its mean tr(eps), the rest being their covariance; then over the layer's mean shear
-    rate 2 eps_xy: the mean tr(eps) of the corrected gradient and the mean -(drho/dt) / rho of the
-    continuity equation, Eq. 26) averaged over ``frames``: the bulk viscosity that the stress
-    2 eta eps gives the grains, and the mean stress it carries in a steady layer (physics/mu_i.py)."""
+    rate 2 eps_xy: the mean tr(eps) of the corrected gradient, that of the uncorrected one
+    (``uncorrected_trace``) and the mean -(drho/dt) / rho of the continuity equation, Eq. 26)
+    averaged over ``frames``: the bulk viscosity that the stress 2 eta eps gives the grains, and the
+    mean stress it carries in a steady layer (physics/mu_i.py)."""
     dp = p["dp"]
     sums = {}
     for f in frames:
         eps, eta = f["strain"], f["eta"]
-        trace = eps[:, 0] + eps[:, 1]
+        trace, uncorrected = eps[:, 0] + eps[:, 1], uncorrected_trace(f, p)
         P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
         continuity = -f["drho_dt"] / f["rho"]
         layer = np.floor(f["x"][:, 1] / dp).astype(int)
@@ -123,11 +144,11 @@ def bulk_table(frames, p):
             sums.setdefault(k, []).append((f["x"][s, 1].mean(), P[s].mean(), 2.0 * eps[s, 2].mean(),
                                            np.mean(2.0 * eta[s] * eps[s, 1]), np.mean(eta[s] * trace[s]),
                                            eta[s].mean() * trace[s].mean(), trace[s].mean(),
-                                           continuity[s].mean()))
+                                           uncorrected[s].mean(), continuity[s].mean()))
     rows = []
     for k in sorted(sums):
-        y, P, rate, normal, isotropic, means, trace, continuity = np.mean(sums[k], axis=0)
-        rows.append((y, normal / P, isotropic / P, means / P, trace / rate, continuity / rate))
+        y, P, rate, normal, isotropic, means, trace, uncorrected, continuity = np.mean(sums[k], axis=0)
+        rows.append((y, normal / P, isotropic / P, means / P, trace / rate, uncorrected / rate, continuity / rate))
     return rows
 
 
@@ -214,10 +235,11 @@ def main():
         print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} "
               f"{row[6]:10.4f}")
     if "drho_dt" in frames[-1]:
-        print(f"{'y [mm]':>7} {'2eta e_yy':>9} {'eta tr':>7} {'of means':>8} {'tr/rate':>8} {'cont/rate':>9}   "
-              "(the bulk viscosity of 2 eta eps: stresses over s p)")
+        print(f"{'y [mm]':>7} {'2eta e_yy':>9} {'eta tr':>7} {'of means':>8} {'tr/rate':>8} {'M tr/rate':>9} "
+              f"{'cont/rate':>9}   (the bulk viscosity of 2 eta eps: stresses over s p)")
         for row in bulk_table(frames, p):
-            print(f"{1e3 * row[0]:7.2f} {row[1]:+9.4f} {row[2]:+7.4f} {row[3]:+8.4f} {row[4]:+8.4f} {row[5]:+9.4f}")
+            print(f"{1e3 * row[0]:7.2f} {row[1]:+9.4f} {row[2]:+7.4f} {row[3]:+8.4f} {row[4]:+8.4f} {row[5]:+9.4f} "
+                  f"{row[6]:+9.4f}")
     if "T_visc" in frames[-1]:
         print(f"{'':7} {'shear traction / weight along the slope':^34}   "
               f"{'normal traction / weight normal to it':^34}")
