@@ -1002,7 +1002,10 @@ def lube_collapse_2d(ranks):
             "The rows 'CONSISTENT_MU_I' run the same five columns with granular_flow.CONSISTENT_MU_I, the options "
             "that bring the CI-sized incline to its uniform flow (the corrected stress taken implicitly, the "
             "isotropic pressure, the law's kernel means of s p and of the strain rate's deviator; "
-            "docs/INCLINE.md).")
+            "docs/INCLINE.md). Their high-a exponent is within issue 14's tolerance of 2/3, where the defaults' is "
+            "not, but they come to rest no better, and the "
+            "a = 1 column is still slumping at the end (0.6 s): run on to 1.2 s (`--t-end 1.2`) its centre "
+            "sinks from 0.77 to 0.68 H_0 and its runout grows from 1.22 to 1.42 (scripts/collapse_deposit.py).")
     return "Planar collapses of sand columns, mu(I) (004_ Sec. 5.2, Lube et al. 2005)", runs[0]["cmd"], rows, image, note
 
 
@@ -1016,7 +1019,7 @@ def _consistent_collapses(aspects, L0, dp, ranks):
              " / ".join(f"{x:.2f}" for x in ratio),
              " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in a), "-", "-"),
             ("CONSISTENT_MU_I: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
-             f"<= {REST:g}", "-", "-")]
+             f"<= {REST:g}", "-", f"{REST:g}", all(r["rest"] <= REST for r in runs))]
     low, high = a <= 1.0, a >= 4.0
     slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
     exponent = float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
