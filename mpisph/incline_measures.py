@@ -49,6 +49,12 @@ def kernel_moment(frame):
     return 0.5 * (A[:, 0, 0] + A[:, 1, 1]), A[:, 0, 1]
 
 
+def carried_pressure(frame):
+    """s p of each particle of a 2D frame, the share of its pressure the pairs carry (``kernel_moment``);
+    the grains' p where the frame holds no B."""
+    return kernel_moment(frame)[0] * frame["p"] if "B" in frame else frame["p"]
+
+
 def weight_above(frame, p, heights):
     """The weight normal to the slope, per unit area, of the grains above each of ``heights``: each
     grain a slab dp thick centred on it, so that a grain within dp/2 of a height counts in part

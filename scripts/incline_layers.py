@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.incline_measures import (flow_depth, hydrostatic, kernel_moment, layer_speeds, profile_figures,
-                                     weight_above, with_artificial_viscosity)
+from mpisph.incline_measures import (carried_pressure, flow_depth, hydrostatic, kernel_moment, layer_speeds,
+                                     profile_figures, weight_above, with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.neighbours import neighbour_lists
@@ -88,7 +88,7 @@ def noise_table(frames, p, material):
         trace, normal_difference, shear = eps[:, 0] + eps[:, 1], eps[:, 0] - eps[:, 1], 2.0 * eps[:, 2]
         full = np.sqrt(2.0 * (eps[:, 0] ** 2 + eps[:, 1] ** 2 + 2.0 * eps[:, 2] ** 2))
         deviatoric = np.sqrt(normal_difference**2 + shear**2)  # sqrt(2 e':e'), e' = eps - tr(eps) / 2 I
-        P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
+        P = carried_pressure(f)
         law_P = f["law_pressure"] if "law_pressure" in f else P
         gamma_dot = f["gamma_dot"]
         # friction's Python source takes arrays as well as numbers
@@ -141,7 +141,7 @@ def bulk_table(frames, p):
     for f in frames:
         eps, eta = f["strain"], f["eta"]
         trace, uncorrected = eps[:, 0] + eps[:, 1], uncorrected_trace(f, p)
-        P = kernel_moment(f)[0] * f["p"] if "B" in f else f["p"]
+        P = carried_pressure(f)
         continuity = -f["drho_dt"] / f["rho"]
         layer = np.floor(f["x"][:, 1] / dp).astype(int)
         for k in np.unique(layer):
