@@ -11,6 +11,11 @@ MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
 CONSISTENT_MU_I = ("viscous_form=corrected_stress", "viscous_step=implicit", "pressure_form=isotropic",
                    "law_pressure=carried_mean", "law_strain_rate=deviatoric_kernel_mean")
 
+# The corrected viscous stress without its bulk part (Eq. 4 with xi = 0) and a regularisation time
+# 33 times 004_'s for the columns, as --set words: deposits that come to rest and columns that still
+# fail at once (physics/mu_i.py, docs/COLLAPSES.md, scripts/validate.py).
+DEVIATORIC_MU_I = ("viscous_form=corrected_stress", "viscous_step=implicit", "viscous_stress=deviatoric", "m_0=40")
+
 
 def mach_compressibility(rho0, speed_squared, mach=MACH):
     """K_t [1/Pa] that puts a flow of speed U (``speed_squared`` = U^2 [m^2/s^2]) at Mach number ``mach``
@@ -31,6 +36,9 @@ def mu_i_params(alpha_doc, viscous_step):
         "viscous_step": Param(viscous_step, "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: the "
                               "viscous term backward in time (physics/implicit_viscosity.py)",
                               choices=("explicit", "implicit")),
+        "viscous_stress": Param("full", "-", "viscous stress of the corrected form: full, 2 eta eps (its isotropic "
+                                "part a bulk viscosity), or deviatoric, 2 eta dev(eps), Eq. 4 with no bulk "
+                                "viscosity (physics/mu_i.py)", choices=("full", "deviatoric")),
         "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or "
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
@@ -49,6 +57,7 @@ def mu_i_scheme(p):
     """Case keywords of the mu_i scheme with the options of ``mu_i_params`` and symplectic Verlet."""
     return dict(scheme="mu_i", integrator="symplectic_verlet",
                 scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
-                                "viscous_step": p.viscous_step, "viscosity_mean": p.viscosity_mean,
+                                "viscous_step": p.viscous_step, "viscous_stress": p.viscous_stress,
+                                "viscosity_mean": p.viscosity_mean,
                                 "pressure_form": p.pressure_form, "law_pressure": p.law_pressure,
                                 "law_strain_rate": p.law_strain_rate})

@@ -173,6 +173,14 @@ def edge_rest_ratio(before, last, t, front, dp, radial=False):
     return float(speed / np.max(np.diff(front) / np.diff(t)))
 
 
+def collapse_onset(t, front, length, fraction=0.05):
+    """When a collapse starts: the first time ``t`` at which its front ``front`` (the farthest
+    grain, diagnostics.csv) has moved ``fraction`` of the column's length or radius ``length`` from
+    where it started; nan if it never has."""
+    moved = np.asarray(front) - front[0] > fraction * length
+    return float(np.asarray(t)[np.argmax(moved)]) if moved.any() else float("nan")
+
+
 def deposit_height(frame, dp, x_max):
     """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x < x_max."""
     x = frame["x"]

@@ -9,10 +9,15 @@ scripts/validate.py measures it (measure.radial_runout, measure.runout) beside L
 within 0.3 r_0 of the axis or the back wall, plus dp / 2) over the column's, which Lube et al. found
 undisturbed below a = 0.74 (axisymmetric) and 1.15 (planar), the deposit's surface height over
 r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0, the speed of the deposit's edge between the last two
-frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), and the grains
+frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), the onset (measure.collapse_onset:
+when the front, the farthest grain of diagnostics.csv, has first moved 0.05 r_0 from its start), and the grains
 beyond the connected deposit's edge (measure.beyond_the_edge): how many, and how far the farthest
 lies beyond r_0, over r_0, and how far beyond r_0, over r_0, 90, 95 and 99 % of the mass lie
 (measure.mass_extent).
+
+With ``--at T [T ...]`` it measures each run at the frame nearest each time T instead of at its last
+frame (the edge speed between that frame and the one before), so that one run gives the deposit
+against time: whether the runout and the centre's height still change once the collapse is over.
 
 With ``--profile STEP`` it also prints, for all the runs side by side, the deposit's surface height over
 r_0 at every STEP r_0 from STEP to the farthest grain (0 where no grain lies within dp of the station),
@@ -27,7 +32,7 @@ import numpy as np
 
 from mpisph import measure, references
 from mpisph.io.diagnostics import read_diagnostics
-from mpisph.io.frames import list_frames, read_frame
+from mpisph.io.frames import frame_time, list_frames, read_frame
 
 STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
 FRACTIONS = (0.9, 0.95, 0.99)  # of the mass, for measure.mass_extent
@@ -55,10 +60,12 @@ def surface_line(frame, dp, radial, length):
     return centres / length, top / length
 
 
-def deposit(run):
-    """The figures of the module docstring for one run, as a dict."""
+def deposit(run, at=None):
+    """The figures of the module docstring for one run, as a dict: at its last frame, or at the
+    frame nearest the time ``at``."""
     frames = list_frames(run)
-    first, before, last = (read_frame(frames[k]) for k in (0, -2, -1))
+    k = len(frames) - 1 if at is None else int(np.argmin([abs(frame_time(f) - at) for f in frames]))
+    first, before, last = (read_frame(frames[i]) for i in (0, max(k - 1, 0), k))
     diag = read_diagnostics(Path(run) / "diagnostics.csv")
     p = last["params"]
     dp, a = float(p["dp"]), float(p["a"])
@@ -76,6 +83,7 @@ def deposit(run):
             "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
             "centre": (height[distance < 0.3 * length].max() + 0.5 * dp) / top0, "surface": surface,
             "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
+            "onset": measure.collapse_onset(diag["t"], diag["front"], length),
             "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length,
             "extents": [(measure.mass_extent(last, q, radial=radial) - length) / length for q in FRACTIONS],
             "frame": last, "dp": dp, "length": length}
@@ -117,12 +125,13 @@ def plot_surfaces(deposits, png):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+")
+    ap.add_argument("--at", type=float, nargs="+", metavar="T", help="measure at the frames nearest these times")
     ap.add_argument("--profile", type=float, metavar="STEP", help="print the surfaces side by side every STEP")
     ap.add_argument("--plot", metavar="PNG", help="draw the surfaces of all the runs into PNG")
     args = ap.parse_args()
     deposits = []
-    for run in args.runs:
-        d = deposit(run)
+    for run, at in ((run, at) for run in args.runs for at in (args.at or [None])):
+        d = deposit(run, at)
         deposits.append(d)
         symbol = "r_0" if d["radial"] else "L_0"
         shape = "axisymmetric" if d["radial"] else "planar"
@@ -131,7 +140,7 @@ def main():
               f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
               f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "
               + " ".join(f"{s:.3f}" for s in d["surface"]) + f"; edge speed / peak front speed {d['rest']:.1e}; "
-              f"{d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}; "
+              f"onset at {d['onset']:.3g} s; {d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}; "
               + ", ".join(f"{100 * q:g}" for q in FRACTIONS) + " % of the mass within "
               + " ".join(f"{e:.3f}" for e in d["extents"]))
     if args.profile:

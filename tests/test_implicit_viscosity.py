@@ -16,7 +16,7 @@ from mpisph.physics.implicit_viscosity import TOLERANCE, ImplicitViscosity, visc
 from mpisph.physics.mu_i import momentum
 from mpisph.physics.mu_i_law import MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT
 from mpisph.physics.viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
-from mpisph.tensors import size, unpacked
+from mpisph.tensors import component, size, unpacked
 from mpisph.workspace import Workspace
 
 from lattice import lattice
@@ -80,12 +80,18 @@ def divergence(s, T):
     return out
 
 
-def stress_apply(s, u, B):
-    """The divergence of the corrected viscous stress at u."""
+def stress_apply(s, u, B, deviatoric=False):
+    """The divergence of the corrected viscous stress at u (of its deviatoric part)."""
     dim = s.x.shape[1]
     T = np.zeros((s.n, dim, dim))
-    viscous_force_tensor(s.n, s.kind, strain(s, u, B), s.eta, B, T)
+    viscous_force_tensor(s.n, s.kind, strain(s, u, B), s.eta, B, deviatoric, T)
     return divergence(s, T)
+
+
+def deviator(e):
+    """e - tr(e) / D I of stacked D x D tensors."""
+    dim = e.shape[-1]
+    return e - np.einsum("iaa->i", e)[:, None, None] / dim * np.eye(dim)
 
 
 @pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
@@ -114,26 +120,50 @@ def test_mass_weighted_operator_is_symmetric_and_dissipative(dim, bed_kind, mean
     assert pAp < 0.0
 
 
+@pytest.mark.parametrize("deviatoric", [False, True])
 @pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_corrected_stress_does_the_work_its_strain_rate_dissipates(dim, bed_kind):
+def test_corrected_stress_does_the_work_its_strain_rate_dissipates(dim, bed_kind, deviatoric):
     """sum_i m_i w_i . a_i[u] = -sum_i V_i 2 eta_i eps_i[u] : eps_i[w] for two random velocity
     fields on a jittered block with densities 13 % apart over a no-slip or free-slip Morris bed: the
     divergence is the gradient's exact adjoint, so the mass-weighted operator is symmetric and
-    never positive (viscous_stress.py)."""
+    never positive (viscous_stress.py); the deviatoric stress likewise with dev(eps[u]) : dev(eps[w])."""
     s = bed_lattice(dim, bed_kind, jitter=0.2)
     B = correction(s)
     rng = np.random.default_rng(3)
     moving = s.kind == MOVING
     u, w = (np.where(moving[:, None], rng.normal(size=(s.n, dim)), 0.0) for _ in range(2))
     eu, ew = (unpacked(strain(s, f, B), dim) for f in (u, w))
+    if deviatoric:
+        eu, ew = deviator(eu), deviator(ew)
     dissipated = np.sum((s.mass / s.rho * 2 * s.eta)[moving] * np.einsum("iab,iab->i", eu, ew)[moving])
     m = s.mass[:, None]
-    wAu, uAw, uAu = (np.sum(a * m * stress_apply(s, b, B)) for a, b in ((w, u), (u, w), (u, u)))
+    wAu, uAw, uAu = (np.sum(a * m * stress_apply(s, b, B, deviatoric)) for a, b in ((w, u), (u, w), (u, u)))
     assert abs(dissipated) > 0.0
     assert wAu == pytest.approx(-dissipated, rel=1e-12)
     assert uAw == pytest.approx(wAu, rel=1e-12)
     assert uAu < 0.0
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_the_deviatoric_stress_has_no_bulk_viscosity(dim):
+    """A strain rate that is a uniform expansion c I gives the full stress 2 eta c B and the
+    deviatoric stress none; a shear gives both the same (physics/mu_i.py, viscous_stress = deviatoric)."""
+    s = bed_lattice(dim, WALL, jitter=0.2)
+    B = correction(s)
+    moving = s.kind == MOVING
+    shear = np.zeros((dim, dim))
+    shear[0, -1] = shear[-1, 0] = 1.0  # a flow along x sheared along the last axis
+    for e, bulk in ((np.eye(dim), True), (shear, False)):
+        eps = np.zeros((s.n, size(dim)))
+        for a in range(dim):
+            for b in range(a, dim):
+                eps[:, component(dim, a, b)] = 3.0 * e[a, b]
+        full, dev = (np.zeros((s.n, dim, dim)) for _ in range(2))
+        viscous_force_tensor(s.n, s.kind, eps, s.eta, B, False, full)
+        viscous_force_tensor(s.n, s.kind, eps, s.eta, B, True, dev)
+        assert np.abs(full[moving]).max() > 0.0
+        np.testing.assert_allclose(dev[moving], 0.0 if bulk else full[moving], atol=1e-12 * np.abs(full).max())
 
 
 @pytest.mark.parametrize("dim", [2, 3])
@@ -186,12 +216,14 @@ class NoHalo:
         pass
 
 
-@pytest.mark.parametrize("corrected", [False, True])
+@pytest.mark.parametrize("form", ["pair", "corrected", "deviatoric"])
 @pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, corrected):
+def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
     """At 1000 times the explicit limit of Eq. 39 the kick solves u - dt a_visc[u] = b to the
-    tolerance and takes kinetic energy out, never in, with either viscous form."""
+    tolerance and takes kinetic energy out, never in, with either viscous form and the corrected
+    form's deviatoric stress (whose preconditioner is still the full stress's diagonal block)."""
+    corrected, deviatoric = form != "pair", form == "deviatoric"
     s = bed_lattice(dim, bed_kind, jitter=0.2 if corrected else 0.0)
     dt = 1000.0 * 0.05 * s.rho.min() * s.k.h**2 / s.eta.max()
     B = correction(s)
@@ -203,12 +235,12 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, correc
                           halo=NoHalo())
     ctx.refresh = lambda names: None
     ctx.correction_matrices = lambda: B
-    scheme = SimpleNamespace(corrected=corrected, beta_max=1.5, viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
+    scheme = SimpleNamespace(corrected=corrected, deviatoric_stress=deviatoric, beta_max=1.5, viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
     solver = ImplicitViscosity(scheme, u_ref=1.0)
     solver.kick(ctx, dt)
     u, b = pa.v, s.v
     moving = s.kind == MOVING
-    a_visc = stress_apply(s, u, B) if corrected else apply(s, u, mean=MEAN_SECANT)
+    a_visc = stress_apply(s, u, B, deviatoric) if corrected else apply(s, u, mean=MEAN_SECANT)
     error = (u - dt * a_visc - b)[moving]
     rms = np.sqrt(np.sum(s.mass[moving, None] * error**2) / s.mass[moving].sum())
     assert 2 < solver.iterations < 200

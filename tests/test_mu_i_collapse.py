@@ -6,6 +6,8 @@ line (tests/test_rank_agreement.py runs the planar collapse on 1, 2 and 3 ranks)
 The runouts against Lube's laws are scripts/validate.py's (docs/VALIDATION.md): an open gap of
 issue 14."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -54,6 +56,24 @@ def test_implicit_kick_follows_the_explicit_step(planar, form):
     front_ex, front_im = np.interp(t, ex["t"], ex["front"]), np.interp(t, im["t"], im["front"])
     assert np.abs(front_im - front_ex).max() < 0.25 * 0.006
     assert front_ex[-1] - ex["front"][0] > 1.5 * 0.006
+
+
+def test_without_bulk_viscosity_a_column_below_yield_fails_at_once(tmp_path):
+    """The a = 0.5 column (L_0 / dp = 20) with the regularisation time m_0 = 120 s, a hundred
+    times 004_'s: with the full corrected stress, whose bulk part (about tau_y m_0 below yield)
+    resists the expansion that relieves the face's pressure, it starts 0.077 s after release; with
+    the deviatoric stress as soon as with m_0 = 1.2 s (0.054 and 0.052 s; physics/mu_i.py)."""
+    onset = {}
+    for stress, m_0 in (("full", 120), ("deviatoric", 120), ("deviatoric", 1.2)):
+        d = tmp_path / f"{stress}_{m_0}"
+        r = mpisph(["lube_collapse_2d", "--set", "a=0.5", "dp=0.00486", f"m_0={m_0}", "viscous_form=corrected_stress",
+                    f"viscous_stress={stress}", "viscous_step=implicit", "diagnostics_every=5", "--t-end", "0.1",
+                    "--output-interval", "0.1", "--out", d, "--quiet"], ranks=1, timeout=600)
+        assert r.returncode == 0, r.stderr
+        diag = read_diagnostics(d / "diagnostics.csv")
+        onset[stress, m_0] = measure.collapse_onset(diag["t"], diag["front"], 0.0972)
+    assert onset["deviatoric", 120] < 1.1 * onset["deviatoric", 1.2]
+    assert onset["full", 120] > 1.3 * onset["deviatoric", 120]
 
 
 def test_front_is_the_farthest_grain(planar):
@@ -105,6 +125,15 @@ def test_rest_is_the_edge_speed_over_the_peak_front_speed():
     ratio = measure.edge_rest_ratio({"x": turned(x), "t": 0.2}, {"x": turned(moved), "t": 0.3}, t, front, dp,
                                     radial=True)
     assert ratio == pytest.approx(0.05, rel=1e-9)
+
+
+def test_onset_is_when_the_front_has_moved_a_twentieth_of_the_column():
+    """A front that creeps by 0.01 L_0 and then runs: its onset is the first time it is more than
+    0.05 L_0 from its start; a front that never gets there has none."""
+    t = np.array([0.0, 0.1, 0.2, 0.3, 0.4])
+    front = 0.1 * np.array([1.0, 1.01, 1.01, 1.06, 1.5])
+    assert measure.collapse_onset(t, front, 0.1) == 0.3
+    assert math.isnan(measure.collapse_onset(t, front, 0.1, fraction=0.6))
 
 
 def test_grains_beyond_a_gap_are_not_the_deposit():
@@ -168,6 +197,7 @@ def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
 @pytest.mark.parametrize("settings, words", [
     (["a=0"], "parameter a must be positive"),
     (["K_t=-1e-5"], "K_t"),
+    (["viscous_stress=deviatoric"], "viscous_stress = deviatoric needs viscous_form = corrected_stress"),
 ])
 def test_bad_settings_are_one_line_errors(tmp_path, settings, words):
     args = [a for s in settings for a in ("--set", s)]

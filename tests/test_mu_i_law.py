@@ -202,7 +202,7 @@ def viscous_acceleration(dim, h_over_dp, corrected):
         strain_rate(n, start, nbr, x, v, rho, mass, kind, np.zeros((n, dim)), zeros, 1.5, B, k.params, strain,
                     gamma_dot)
         T = np.zeros((n, dim, dim))
-        viscous_force_tensor(n, kind, strain, eta, B, T)
+        viscous_force_tensor(n, kind, strain, eta, B, False, T)
         stress_divergence(n, start, nbr, x, rho, T, mass, kind, np.zeros((n, dim)), k.params, acc)
     else:
         momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0, True,

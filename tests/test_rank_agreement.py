@@ -80,6 +80,9 @@ CASES = {
     # the implicit kick of the corrected viscous stress: its stress sent to ghosts every iteration
     "lube_collapse_2d corrected": (["--set", "dp=0.005", "viscous_form=corrected_stress", "--t-end", "0.06",
                                     "--output-interval", "0.03"], 0.5),
+    # the same with the deviatoric viscous stress, the regularisation time of a column that comes to rest
+    "lube_collapse_2d deviatoric": (["--set", "dp=0.005", "viscous_form=corrected_stress", "viscous_stress=deviatoric",
+                                     "m_0=40", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
     # the mu(I) density by kernel summation near a free surface
     "lube_collapse_2d reinit": (["--set", "dp=0.005", "density_reinit=free_surface", "--t-end", "0.06",
                                  "--output-interval", "0.03"], 0.5),

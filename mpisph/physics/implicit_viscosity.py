@@ -240,7 +240,7 @@ class CorrectedStress:
         T = pa.viscous_direction_stress
         strain_rate(n, ctx.start, ctx.nbr, ctx.xc, u, pa.rho, pa.mass, pa.kind, pa.normal, pa.wall_distance,
                     s.beta_max, pa.B, k, strain, gamma_dot)
-        viscous_force_tensor(n, pa.kind, strain, pa.eta, pa.B, T)
+        viscous_force_tensor(n, pa.kind, strain, pa.eta, pa.B, s.deviatoric_stress, T)
         ctx.refresh(["viscous_direction_stress"])
         out[:] = 0.0
         stress_divergence(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, T, pa.mass, pa.kind, pa.normal, k, out)

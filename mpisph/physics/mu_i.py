@@ -34,6 +34,21 @@ law magnifies such a deficit about eightfold in the speed of a uniform flow
 (docs/VALIDATION.md). With ``Case.density_reinit`` the density is reset by
 kernel summation (001_ Eq. 8, fluid.py) once per configuration.
 
+The option ``viscous_stress = deviatoric`` (with the corrected stress) takes the
+viscous stress as 2 eta dev(eps), dev(eps) = eps - tr(eps) / D I: Eq. 4 with xi = 0,
+the fluid "with no bulk viscosity" that 004_ says Eq. 10 is. The full stress 2 eta eps
+has the isotropic part 2 eta tr(eps) / D, a bulk viscosity as large as the shear
+viscosity, which below yield is about tau_y m_0 (Eq. 53). A released column sheds
+its pressure at the face by expanding, and a bulk viscosity resists the
+expansion: with m_0 = 120 s the full corrected stress starts the a = 0.5 column
+0.077 s after release, the deviatoric one at 0.054 s as at m_0 = 1.2 s
+(tests/test_mu_i_collapse.py); Eq. 27's pair term, which has a bulk part of its
+own, starts it 0.55 s late, and sooner with stiffer grains (smaller K_t;
+docs/COLLAPSES.md). A regularisation time long enough for a deposit to stop
+(m_0 = 40 s for Lube's columns, granular_flow.DEVIATORIC_MU_I) then no longer
+delays the collapse. Without the bulk part nothing damps the grains' acoustic
+noise: on the steady incline the free surface erupts (docs/INCLINE.md).
+
 The option ``pressure_form = isotropic`` replaces the pressure pairs of Eq. 27
 by the same divergence of the stress T_i = -p_i s_i B_i, s_i = tr(A_i) / D with
 A_i = B_i^-1 = -sum_j V_j r_ij (x) g_ij. Why: a pair sum F_ij carries across a
@@ -89,8 +104,9 @@ that the law would count as shear: in the bulk of the steady incline its rms is 
 shear rate at H/dp = 20 and 0.13-0.32 at H/dp = 40 (a pressure noise of a given size has a velocity noise
 of a given size, whose gradient grows as 1/dp), and it is what the kernel mean leaves of the
 misalignment (docs/INCLINE.md). The deviator is that of the model's D dimensions, whose pressure
-is the mean of its D normal stresses. The viscous stress keeps the whole of eps: its isotropic
-part, 2 eta div v / D, is the bulk viscosity that damps the noise.
+is the mean of its D normal stresses. The viscous stress keeps the whole of eps unless
+``viscous_stress = deviatoric``: its isotropic part, 2 eta div v / D, is the bulk viscosity that
+damps the noise.
 
 The option ``law_pressure = carried_mean`` gives the law the kernel mean of the carried pressure
 s p (kernel_mean.py) and forms I from it (Eq. 6), where the grains' own pressure and dilatancy
@@ -131,6 +147,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..materials import MuIGranular
@@ -326,6 +343,7 @@ class GranularMomentum(ForceTerm):
 
 
 VISCOUS_FORMS = ("cleary", "corrected_stress")
+VISCOUS_STRESSES = ("full", "deviatoric")
 VISCOUS_STEPS = ("explicit", "implicit")
 VISCOSITY_MEANS = ("harmonic", "arithmetic", "secant")  # in the order of mu_i_law's MEAN_* codes
 PRESSURE_FORMS = ("symmetric", "isotropic")
@@ -348,6 +366,8 @@ class MuIScheme(Scheme):
     of either form taken backward in time in the kick (implicit_viscosity.py), and
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
     (mu_i_law.pair_viscosity; ghosts then need gamma_dot too), and
+    ``viscous_stress``: ``full`` (2 eta eps) or ``deviatoric`` (2 eta dev(eps), Eq. 4 with no bulk
+    viscosity; corrected_stress only), and
     ``pressure_form``: ``symmetric`` (Eq. 27) or ``isotropic``, and ``law_pressure``: ``state``
     (the grains' pressure of Eq. 42), ``carried`` (the share of it the pairs carry) or
     ``carried_mean`` (its kernel mean) in the friction law, and ``law_strain_rate``: ``own`` (each
@@ -359,7 +379,7 @@ class MuIScheme(Scheme):
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
-               "viscosity_mean": "harmonic", "pressure_form": "symmetric", "law_pressure": "state",
+               "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric", "law_pressure": "state",
                "law_strain_rate": "own"}
 
     def __init__(self, case, kernel):
@@ -368,6 +388,10 @@ class MuIScheme(Scheme):
         self.beta_max = self.option("beta_max")
         self.corrected = self.option_choice("viscous_form", VISCOUS_FORMS) == "corrected_stress"
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
+        self.deviatoric_stress = self.option_choice("viscous_stress", VISCOUS_STRESSES) == "deviatoric"
+        if self.deviatoric_stress and not self.corrected:
+            raise InputError("scheme mu_i: viscous_stress = deviatoric needs viscous_form = corrected_stress "
+                             "(the pair term of Eq. 27 carries no stress tensor to take the deviator of)")
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
         law_pressure = self.option_choice("law_pressure", LAW_PRESSURES)
@@ -453,7 +477,7 @@ class MuIScheme(Scheme):
             law_p[:n] = mean_p[:, 0]
             law_viscosity(n, pa.kind, pa.rho_s, pa.gamma_dot, law_p, pa.eta, self.dim, self.params)
         if self.corrected:
-            viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, pa.T_visc)
+            viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, self.deviatoric_stress, pa.T_visc)
         if self.isotropic:
             isotropic_pressure_stress(n, pa.kind, pa.p, B, pa.T_pressure)
 

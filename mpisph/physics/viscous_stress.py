@@ -7,14 +7,17 @@ the velocity gradient of 004_ Eq. 31 and the corrected gradient of 000_ Eq. 24 a
 
 eps the symmetric part of L and gamma_dot = sqrt(2 eps:eps) (004_ Eqs. 6, 31).
 With ``viscous_form = corrected_stress`` the viscous force is the divergence of
-the stress 2 eta eps, carried as T_i = 2 eta_i eps_i B_i, in the form that is
+the stress 2 eta eps, carried as T_i = 2 eta_i eps_i B_i (with ``viscous_stress =
+deviatoric``, of 2 eta dev(eps), dev(eps) = eps - tr(eps) / D I), in the form that is
 the exact adjoint of the gradient above between material particles:
 
     a_i[u] = sum_j m_j (T_i + T_j) g_ij / (rho_i rho_j),
 
 so that sum_i m_i w_i . a_i[u] = -sum_i V_i 2 eta_i eps_i[u] : eps_i[w] for any
 two velocity fields u and w that the walls do not enter (docs/COLLAPSES.md
-derives it): the force does the work the strain rate dissipates. The form
+derives it): the force does the work the strain rate dissipates. The deviator is
+a symmetric projection, dev(eps[u]) : eps[w] = dev(eps[u]) : dev(eps[w]), so the
+deviatoric stress keeps that symmetry and dissipates 2 eta dev(eps) : dev(eps). The form
 sum_j m_j (T_i / rho_i^2 + T_j / rho_j^2) g_ij of the solids (solid.py) differs
 from it by the grains' compression, rho_i / rho_j - 1.
 
@@ -101,16 +104,20 @@ def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, be
 
 
 @njit(cache=True)
-def viscous_force_tensor(n, kind, strain, eta, B, T):
+def viscous_force_tensor(n, kind, strain, eta, B, deviatoric, T):
     """T_i = 2 eta_i eps_i B_i, the viscous stress times the correction matrix (not symmetric),
-    of the moving particles."""
+    of the moving particles; with ``deviatoric``, 2 eta_i (eps_i - tr(eps_i) / D I) B_i."""
     dim = T.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
             continue
+        mean = 0.0
+        if deviatoric:
+            for a in range(dim):
+                mean += strain[i, component(dim, a, a)] / dim
         for a in range(dim):
             for b in range(dim):
-                acc = 0.0
+                acc = -mean * B[i, component(dim, a, b)]
                 for c in range(dim):
                     acc += strain[i, component(dim, a, c)] * B[i, component(dim, c, b)]
                 T[i, a, b] = 2.0 * eta[i] * acc
