@@ -43,27 +43,37 @@ from mpisph.physics.viscous_stress import strain_rate
 from mpisph.references import inclined_plane_velocity
 
 
+def per_layer(frames, dp, of_frame):
+    """Per dp-thick layer above the bed, bottom first, the mean over ``frames`` of the tuple that
+    ``of_frame(frame)`` (what the frame's layers share, computed once) gives for a layer as
+    ``of_layer(s, index)``: s the layer's mask, index its place among the frame's layers."""
+    sums = {}
+    for f in frames:
+        of_layer = of_frame(f)
+        layer = np.floor(f["x"][:, 1] / dp).astype(int)
+        for index, k in enumerate(np.unique(layer)):
+            sums.setdefault(k, []).append(of_layer(layer == k, index))
+    return [np.mean(sums[k], axis=0) for k in sorted(sums)]
+
+
 def layer_table(frames, p, material):
     """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/tan, I/I_u, s, A_xy, alignment)
     averaged over ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0; the
     alignment is the layer's mean 2 eps_xy over its mean gamma_dot, the law's strain rate."""
     dp, theta, g = p["dp"], math.radians(p["theta"]), p["g"]
     I_u, _ = material.uniform_flow(p["theta"])
-    sums = {}
-    for f in frames:
+
+    def of_frame(f):
         y = f["x"][:, 1]
         share, A_xy = kernel_moment(f)
-        layer = np.floor(y / dp).astype(int)
-        for k, p_h in zip(np.unique(layer), hydrostatic(f, p)):
-            s = layer == k
-            centre = y[s].mean()
-            row = (centre, f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(),
-                   (share[s] * f["p"][s]).mean(), p_h, f["friction"][s].mean(), f["inertial_number"][s].mean(),
-                   share[s].mean(), A_xy[s].mean(), f["gamma_dot"][s].mean())
-            sums.setdefault(k, []).append(row)
+        p_h = hydrostatic(f, p)
+        return lambda s, index: (y[s].mean(), f["v"][s, 0].mean(), 2.0 * f["strain"][s, 2].mean(), f["p"][s].mean(),
+                                 (share[s] * f["p"][s]).mean(), p_h[index], f["friction"][s].mean(),
+                                 f["inertial_number"][s].mean(), share[s].mean(), A_xy[s].mean(),
+                                 f["gamma_dot"][s].mean())
+
     rows = []
-    for k in sorted(sums):
-        centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot = np.mean(sums[k], axis=0)
+    for centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot in per_layer(frames, dp, of_frame):
         depth = flow_depth(p, material)
         u_a = inclined_plane_velocity(material, p["theta"], depth, g, min(max(centre, 0.0), depth))
         rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
@@ -82,8 +92,8 @@ def noise_table(frames, p, material):
     ``frames``: the noise the law's inputs carry and what it costs (physics/mu_i.py, options
     law_strain_rate and law_pressure)."""
     dp, m = p["dp"], material.params
-    sums = {}
-    for f in frames:
+
+    def of_frame(f):
         eps = f["strain"]
         trace, normal_difference, shear = eps[:, 0] + eps[:, 1], eps[:, 0] - eps[:, 1], 2.0 * eps[:, 2]
         full = np.sqrt(2.0 * (eps[:, 0] ** 2 + eps[:, 1] ** 2 + 2.0 * eps[:, 2] ** 2))
@@ -93,17 +103,14 @@ def noise_table(frames, p, material):
         gamma_dot = f["gamma_dot"]
         # friction's Python source takes arrays as well as numbers
         tau = friction.py_func(gamma_dot * m.d0 / np.sqrt(np.maximum(P, 1e-300) / m.rho_s0), m) * P
-        layer = np.floor(f["x"][:, 1] / dp).astype(int)
-        for k in np.unique(layer):
-            s = layer == k
-            sums.setdefault(k, []).append((f["x"][s, 1].mean(), shear[s].mean(), np.mean(trace[s] ** 2),
-                                           np.mean(normal_difference[s] ** 2), full[s].mean(), deviatoric[s].mean(),
-                                           P[s].mean(), P[s].var(), tau[s].mean(), gamma_dot[s].mean(),
-                                           np.mean(2.0 * f["eta"][s] * eps[s, 2]),
-                                           np.mean(f["friction"][s] * law_P[s])))
+        return lambda s, index: (f["x"][s, 1].mean(), shear[s].mean(), np.mean(trace[s] ** 2),
+                                 np.mean(normal_difference[s] ** 2), full[s].mean(), deviatoric[s].mean(),
+                                 P[s].mean(), P[s].var(), tau[s].mean(), gamma_dot[s].mean(),
+                                 np.mean(2.0 * f["eta"][s] * eps[s, 2]), np.mean(f["friction"][s] * law_P[s]))
+
     rows = []
-    for k in sorted(sums):
-        y, rate, trace2, difference2, full, deviatoric, P, P_var, tau, gamma_dot, stress, law = np.mean(sums[k], axis=0)
+    for y, rate, trace2, difference2, full, deviatoric, P, P_var, tau, gamma_dot, stress, law in per_layer(
+            frames, dp, of_frame):
         at_mean = friction(gamma_dot * m.d0 / np.sqrt(P / m.rho_s0), m) * P if P > 0.0 else np.nan
         rows.append((y, np.sqrt(trace2) / rate, np.sqrt(difference2) / rate, rate / full, rate / deviatoric,
                      np.sqrt(P_var) / P, tau / at_mean, stress / law))
@@ -136,23 +143,19 @@ def bulk_table(frames, p):
     (``uncorrected_trace``) and the mean -(drho/dt) / rho of the continuity equation, Eq. 26)
     averaged over ``frames``: the bulk viscosity that the stress 2 eta eps gives the grains, and the
     mean stress it carries in a steady layer (physics/mu_i.py)."""
-    dp = p["dp"]
-    sums = {}
-    for f in frames:
+
+    def of_frame(f):
         eps, eta = f["strain"], f["eta"]
         trace, uncorrected = eps[:, 0] + eps[:, 1], uncorrected_trace(f, p)
         P = carried_pressure(f)
         continuity = -f["drho_dt"] / f["rho"]
-        layer = np.floor(f["x"][:, 1] / dp).astype(int)
-        for k in np.unique(layer):
-            s = layer == k
-            sums.setdefault(k, []).append((f["x"][s, 1].mean(), P[s].mean(), 2.0 * eps[s, 2].mean(),
-                                           np.mean(2.0 * eta[s] * eps[s, 1]), np.mean(eta[s] * trace[s]),
-                                           eta[s].mean() * trace[s].mean(), trace[s].mean(),
-                                           uncorrected[s].mean(), continuity[s].mean()))
+        return lambda s, index: (f["x"][s, 1].mean(), P[s].mean(), 2.0 * eps[s, 2].mean(),
+                                 np.mean(2.0 * eta[s] * eps[s, 1]), np.mean(eta[s] * trace[s]),
+                                 eta[s].mean() * trace[s].mean(), trace[s].mean(), uncorrected[s].mean(),
+                                 continuity[s].mean())
+
     rows = []
-    for k in sorted(sums):
-        y, P, rate, normal, isotropic, means, trace, uncorrected, continuity = np.mean(sums[k], axis=0)
+    for y, P, rate, normal, isotropic, means, trace, uncorrected, continuity in per_layer(frames, p["dp"], of_frame):
         rows.append((y, normal / P, isotropic / P, means / P, trace / rate, uncorrected / rate, continuity / rate))
     return rows
 
