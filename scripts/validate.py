@@ -24,7 +24,7 @@ from mpisph import incline_measures, measure, references  # noqa: E402
 from mpisph.case import build_case, load_case_module, resolve_params  # noqa: E402
 from mpisph.compare import measures as compare_measures  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
-from mpisph.granular_flow import CONSISTENT_MU_I  # noqa: E402
+from mpisph.granular_flow import CONSISTENT_MU_I, DEVIATORIC_MU_I  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
 from mpisph.kernels import Kernel  # noqa: E402
@@ -899,21 +899,27 @@ def inclined_plane_deep(ranks):
 REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
 
 
-def _collapse(case, a, length, dp, ranks, radial, variant=()):
-    """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to 6 sqrt(H_0/g)
-    (at least 0.6 s): its diagnostics, last frame, command, runout ratio, and how far from rest it
-    is between its last two frames (measure.edge_rest_ratio)."""
+def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None):
+    """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to ``t_end``,
+    by default 6 sqrt(H_0/g) (at least 0.6 s): its diagnostics, last frame, command, runout ratio,
+    how far from rest it is between its last two frames (measure.edge_rest_ratio), and its onset
+    (measure.collapse_onset)."""
     H0 = a * length
-    t_end = max(0.6, 6.0 * np.sqrt(H0 / 9.81))
+    default_end = max(0.6, 6.0 * np.sqrt(H0 / 9.81))
     settings = [f"a={a}", f"dp={dp:.12g}", *variant]
-    frames, diag, shown = run(f"{case}_" + "_".join(s.replace("=", "") for s in settings), case,
+    name = f"{case}_" + "_".join(s.replace("=", "") for s in settings)
+    if t_end is None:
+        t_end = default_end
+    else:
+        name += f"_to{t_end:g}"
+    frames, diag, shown = run(name, case,
                               ["--set", *settings, "--t-end", f"{t_end:.3g}", "--output-interval", f"{t_end / 20:.3g}"],
                               ranks)
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
     return {"a": a, "H0": H0, "diag": diag, "last": last, "cmd": shown, "ratio": (extent - length) / length,
-            "rest": rest, "t_end": last["t"]}
+            "rest": rest, "t_end": last["t"], "onset": measure.collapse_onset(diag["t"], diag["front"], length)}
 
 
 def _front_panel(ax, runs, length, symbol):
@@ -943,7 +949,7 @@ def lube_collapse_2d(ranks):
     aa = np.geomspace(0.3, 8, 50)
     ax[1].loglog(aa, 1.2 * aa, "k--", label="1.2 a")
     ax[1].loglog(aa, 1.9 * aa ** (2 / 3), "k:", label="1.9 a^(2/3)")
-    ax[1].loglog(a, ratio, "o", label="mpisph")
+    ax[1].loglog(a, ratio, "o", label="defaults")
     ax[1].set_xlabel("a = H_0 / L_0")
     ax[1].set_ylabel("(L_inf - L_0) / L_0")
     ax[1].legend(fontsize=7)
@@ -965,23 +971,35 @@ def lube_collapse_2d(ranks):
     ax[2].set_xlabel("x / L_0")
     ax[2].set_ylabel("deposit height / L_0")
     ax[2].legend(fontsize=7)
-    for a_k, variant, what in ((1.0, "viscosity_mean=harmonic", "Eq. 37's harmonic mean as printed"),
-                               (1.0, "viscosity_mean=arithmetic", "the arithmetic mean"),
-                               (0.5, "viscous_step=explicit", "the explicit step of Eq. 39"),
-                               (0.5, "m_0=12", "m_0 = 12 s")):
-        r = _collapse("lube_collapse_2d", a_k, L0, dp, ranks, radial=False, variant=(variant,))
+    rows.append(("onset [s] (the front 0.05 L_0 out) at a = " + ", ".join(f"{r['a']:g}" for r in runs),
+                 " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-"))
+    more = {}  # the runs below by (a, variant, t_end)
+    for a_k, variant, what, t_end in ((1.0, (), "the defaults", 3.0), (0.5, (), "the defaults", 3.0),
+                                      (1.0, ("viscosity_mean=harmonic",), "Eq. 37's harmonic mean as printed", None),
+                                      (1.0, ("viscosity_mean=arithmetic",), "the arithmetic mean", None),
+                                      (0.5, ("viscous_step=explicit",), "the explicit step of Eq. 39", None),
+                                      (0.5, ("m_0=40",), "m_0 = 40 s", None)):
+        r = _collapse("lube_collapse_2d", a_k, L0, dp, ranks, radial=False, variant=variant, t_end=t_end)
+        more[(a_k, variant, t_end)] = r
         height = measure.deposit_height(r["last"], dp, 0.25 * L0) / L0
+        what += "" if t_end is None else f", to {t_end:g} s"
         rows += [(f"a = {a_k:g} with {what}: (L_inf - L_0) / L_0", f"{r['ratio']:.2f}", f"{1.2 * a_k:.2f}",
                   f"{100 * (r['ratio'] / (1.2 * a_k) - 1):+.0f}%", "-"),
-                 (f"a = {a_k:g} with {what}: H_inf / L_0; edge speed / peak", f"{height:.3f}; {r['rest']:.1e}",
-                  f"{a_k:g}; <= {REST:g}", "-", "-")]
+                 (f"a = {a_k:g} with {what}: H_inf / L_0; edge speed / peak; onset [s]",
+                  f"{height:.3f}; {r['rest']:.1e}; {r['onset']:.3f}", f"{a_k:g}; <= {REST:g}; -", "-", "-")]
     exponent, fits = _planar_fits(a, ratio)
     rows += fits
     for channel, (n, spread) in references.PLANAR_RUNOUT_EXPONENTS.items():
         rows.append((f"high-a exponent against Balmforth & Kerswell's {channel} ({n:g} +- {spread:g})",
                      f"{exponent:.2f}", f"{n:g}", f"{exponent - n:+.2f}", "-"))
-    rows += _consistent_collapses(a, L0, dp, ranks)
+    rows += _variant_collapses("CONSISTENT_MU_I", CONSISTENT_MU_I, a, L0, dp, ranks, ax[1], "s")
+    rows += _variant_collapses("DEVIATORIC_MU_I", DEVIATORIC_MU_I, a, L0, dp, ranks, ax[1], "^")
+    ax[1].legend(fontsize=7)
     image = save(fig, "lube_collapse_2d.png")
+    default = {r["a"]: r for r in runs}
+    growth = " and ".join(f"{100 * (more[(a_k, (), 3.0)]['ratio'] / default[a_k]['ratio'] - 1):.0f} %"
+                          for a_k in (0.5, 1.0))
+    onsets = f"{more[(0.5, ('m_0=40',), None)]['onset']:.2f} s against {default[0.5]['onset']:.2f} s at a = 0.5"
     note = ("Runs with the cases' defaults: the implicit viscous kick (`viscous_step=explicit` is the paper's "
             "scheme) and the secant pair viscosity (`viscosity_mean=harmonic` is Eq. 37 as printed; "
             "mu_i_law.pair_viscosity says why it fails), L_0 = 9.72 cm, dp = L_0 / 20 (004_ Table 3 uses "
@@ -992,13 +1010,22 @@ def lube_collapse_2d(ranks):
             "(1) the runouts follow 1.2 a up to a = 6, with too little bend to a^(2/3) (004_ also found no "
             "agreement above a = 3); Balmforth & Kerswell (2005) measured a^(0.9 +- 0.1) in wide channels and "
             "a^(0.65 +- 0.05) only in narrow slots, whose side walls a plane-strain run lacks "
-            "(docs/COLLAPSES.md); (2) the deposits' edges still creep at the end, as the regularisation lets "
-            "a grain at rest strain at about (tau / tau_y) / m_0 (Eq. 53: eta_max ~ tau_y m_0), which at "
-            "m_0 = 1.2 s is above 1e-3 of the collapse's speed; the edge speed at the end is sensitive to "
-            "round-off (runs that differ by 1e-5 m early give 4.7e-4 and 2.3e-3 at a = 2, 0.37 and 3.1e-3 at "
-            "a = 4, where a grain at the edge still moves); ten times larger m_0 (the implicit "
-            "kick makes it no slower) keeps the top of the a = 0.5 column and stops its edge, but shortens the "
-            "runout (the rows 'with m_0 = 12 s'); (3) the top of the a = 1 column sinks by a fifth, where "
+            "(docs/COLLAPSES.md); (2) the deposits creep on, as the regularisation lets a grain below yield "
+            "strain at about (tau / tau_y) / m_0 (Eq. 53: eta_max ~ tau_y m_0), which at m_0 = 1.2 s is above "
+            "1e-3 of the collapse's speed: run on to 3 s, the runouts of a = 0.5 and 1 grow by "
+            + growth + " and their tops sink further (the rows 'to 3 s'; the edge speed at the end is also "
+            "sensitive to round-off: runs that differ by 1e-5 m early give 4.7e-4 and 2.3e-3 at a = 2, 0.37 "
+            "and 3.1e-3 at a = 4, where a grain at the edge still moves); m_0 = 40 s stops the a = 0.5 "
+            "deposit and keeps its top, but with the pair term of Eq. 27 the collapse starts later (onset, the "
+            "front 0.05 L_0 out, " + onsets + "): below yield the pair term's bulk viscosity, about tau_y m_0, "
+            "resists the expansion by which the released face sheds its pressure, so the column creeps before it "
+            "fails (docs/COLLAPSES.md, 'The regularisation time m_0'). The rows 'DEVIATORIC_MU_I' run the five "
+            "columns with granular_flow.DEVIATORIC_MU_I: the corrected stress without its bulk part (Eq. 4 with "
+            "xi = 0, the fluid 'with no bulk viscosity' 004_ says Eq. 10 is) and m_0 = 40 s, whose columns start "
+            "as soon as the defaults' and whose deposits stop, the a = 0.5 one with its top in place; they run out "
+            "less at small a, where part of the defaults' agreement with 1.2 a is the creep, and their high-a "
+            "exponent moves by about 0.1 with the step sequence (a = 6 to 3 s on one rank with frames every 0.05 s: "
+            "6.13 at 6 sqrt(H_0 / g), exponent 0.86; docs/COLLAPSES.md); ""(3) the top of the a = 1 column sinks by a fifth, where "
             "Lube's stays put below a = 1.15. The explicit step of Eq. 39 gives the implicit kick's runout. "
             "The rows 'CONSISTENT_MU_I' run the same five columns with granular_flow.CONSISTENT_MU_I, the options "
             "that bring the CI-sized incline to its uniform flow (the corrected stress taken implicitly, the "
@@ -1010,18 +1037,21 @@ def lube_collapse_2d(ranks):
     return "Planar collapses of sand columns, mu(I) (004_ Sec. 5.2, Lube et al. 2005)", runs[0]["cmd"], rows, image, note
 
 
-def _consistent_collapses(aspects, L0, dp, ranks):
-    """Rows of the planar collapses of ``aspects`` with the options of granular_flow.CONSISTENT_MU_I
-    (which bring the incline to its uniform flow): runout ratios, rest, the fitted slope and exponent."""
-    runs = [_collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=CONSISTENT_MU_I) for a in aspects]
+def _variant_collapses(label, variant, aspects, L0, dp, ranks, ax, marker):
+    """Rows of the planar collapses of ``aspects`` with the options ``variant`` (--set words of
+    granular_flow), named ``label``: runout ratios, rest, onsets, the fitted slope and exponent; the
+    runouts drawn into ``ax`` with ``marker``."""
+    runs = [_collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=variant) for a in aspects]
     a = np.array([r["a"] for r in runs])
     ratio = np.array([r["ratio"] for r in runs])
-    rows = [("CONSISTENT_MU_I: (L_inf - L_0) / L_0 at a = " + ", ".join(f"{x:g}" for x in a),
+    ax.loglog(a, ratio, marker, mfc="none", label=label)
+    rows = [(f"{label}: (L_inf - L_0) / L_0 at a = " + ", ".join(f"{x:g}" for x in a),
              " / ".join(f"{x:.2f}" for x in ratio),
              " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in a), "-", "-"),
-            ("CONSISTENT_MU_I: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
-             f"<= {REST:g}", "-", f"{REST:g}", all(r["rest"] <= REST for r in runs))]
-    return rows + _planar_fits(a, ratio, "CONSISTENT_MU_I: ")[1]
+            (f"{label}: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
+             f"<= {REST:g}", "-", f"{REST:g}", all(r["rest"] <= REST for r in runs)),
+            (f"{label}: onset [s]", " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-")]
+    return rows + _planar_fits(a, ratio, f"{label}: ")[1]
 
 
 def _planar_fits(a, ratio, label=""):
