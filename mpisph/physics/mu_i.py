@@ -43,7 +43,7 @@ its pressure at the face by expanding, and a bulk viscosity resists the
 expansion: with m_0 = 120 s the full corrected stress starts the a = 0.5 column
 0.077 s after release, the deviatoric one at 0.054 s as at m_0 = 1.2 s
 (tests/test_mu_i_collapse.py); Eq. 27's pair term, which has a bulk part of its
-own, starts it 0.55 s late, and sooner with stiffer grains (smaller K_t;
+own, only at 0.55 s, and sooner with stiffer grains (smaller K_t;
 docs/COLLAPSES.md). A regularisation time long enough for a deposit to stop
 (m_0 = 40 s for Lube's columns, granular_flow.DEVIATORIC_MU_I) then no longer
 delays the collapse. Without the bulk part nothing damps the grains' acoustic
