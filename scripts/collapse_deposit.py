@@ -9,11 +9,11 @@ scripts/validate.py measures it (measure.radial_runout, measure.runout) beside L
 within 0.3 r_0 of the axis or the back wall, plus dp / 2) over the column's, which Lube et al. found
 undisturbed below a = 0.74 (axisymmetric) and 1.15 (planar), the deposit's surface height over
 r_0 at 0.5, 0.75, 1, 1.25 and 1.5 r_0, the speed of the deposit's edge between the last two
-frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), the onset (measure.collapse_onset:
-when the front, the farthest grain of diagnostics.csv, has first moved 0.05 r_0 from its start), and the grains
-beyond the connected deposit's edge (measure.beyond_the_edge): how many, and how far the farthest
-lies beyond r_0, over r_0, and how far beyond r_0, over r_0, 90, 95 and 99 % of the mass lie
-(measure.mass_extent).
+frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at rest), the onset
+(measure.collapse_onset: when the front, the farthest grain of diagnostics.csv, has first moved
+0.05 r_0 from its start), and the grains beyond the connected deposit's edge
+(measure.beyond_the_edge): how many, and how far the farthest lies beyond r_0, over r_0, and how
+far beyond r_0, over r_0, 90, 95 and 99 % of the mass lie (measure.mass_extent).
 
 With ``--at T [T ...]`` it measures each run at the frame nearest each time T instead of at its last
 frame (the edge speed between that frame and the one before), so that one run gives the deposit
@@ -140,7 +140,8 @@ def main():
               f"{d['law']:.3f} ({100 * (d['ratio'] / d['law'] - 1):+.1f} %); centre height / H_0 "
               f"{d['centre']:.3f}; surface / {symbol} at " + ", ".join(f"{s:g}" for s in STATIONS) + f" {symbol}: "
               + " ".join(f"{s:.3f}" for s in d["surface"]) + f"; edge speed / peak front speed {d['rest']:.1e}; "
-              f"onset at {d['onset']:.3g} s; {d['beyond']} grains beyond the edge, the farthest grain's edge at {d['farthest']:.3f}; "
+              f"onset at {d['onset']:.3g} s; {d['beyond']} grains beyond the edge, the farthest grain's edge at "
+              f"{d['farthest']:.3f}; "
               + ", ".join(f"{100 * q:g}" for q in FRACTIONS) + " % of the mass within "
               + " ".join(f"{e:.3f}" for e in d["extents"]))
     if args.profile:

@@ -235,7 +235,8 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
                           halo=NoHalo())
     ctx.refresh = lambda names: None
     ctx.correction_matrices = lambda: B
-    scheme = SimpleNamespace(corrected=corrected, deviatoric_stress=deviatoric, beta_max=1.5, viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
+    scheme = SimpleNamespace(corrected=corrected, deviatoric_stress=deviatoric, beta_max=1.5,
+                             viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
     solver = ImplicitViscosity(scheme, u_ref=1.0)
     solver.kick(ctx, dt)
     u, b = pa.v, s.v

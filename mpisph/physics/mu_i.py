@@ -379,8 +379,8 @@ class MuIScheme(Scheme):
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
-               "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric", "law_pressure": "state",
-               "law_strain_rate": "own"}
+               "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric",
+               "law_pressure": "state", "law_strain_rate": "own"}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
