@@ -36,9 +36,10 @@ def mu_i_params(alpha_doc, viscous_step):
         "viscous_step": Param(viscous_step, "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: the "
                               "viscous term backward in time (physics/implicit_viscosity.py)",
                               choices=("explicit", "implicit")),
-        "viscous_stress": Param("full", "-", "viscous stress of the corrected form: full, 2 eta eps (its isotropic "
-                                "part a bulk viscosity), or deviatoric, 2 eta dev(eps), Eq. 4 with no bulk "
-                                "viscosity (physics/mu_i.py)", choices=("full", "deviatoric")),
+        "viscous_stress": Param("full", "-", "viscous stress: full, 2 eta eps or Eq. 27 as printed (each with a "
+                                "bulk viscosity), or deviatoric, 2 eta dev(eps), Eq. 4 with no bulk viscosity, or "
+                                "the pair term that tends to its divergence (physics/mu_i.py)",
+                                choices=("full", "deviatoric")),
         "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or "
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "

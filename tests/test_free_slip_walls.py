@@ -137,6 +137,7 @@ def test_a_free_slip_morris_wall_takes_the_mu_i_pressure_along_its_normal_only()
     acc = np.zeros((n, 2))
     zero = np.zeros(n)
     momentum(n, start, nbr, x, np.zeros((n, 2)), np.full(n, 1000.0), np.full(n, 1e3), zero, zero,
-             np.full(n, 1000 * DP**2), kind, normal, wall_distance, 1.5, 0.0, 20.0, True, 0.0, MEAN_ARITHMETIC, KERNEL, acc)
+             np.full(n, 1000 * DP**2), kind, normal, wall_distance, 1.5, 0.0, 20.0, True, 0.0, 1.0, 0.0,
+             MEAN_ARITHMETIC, KERNEL, acc)
     assert acc[0, 1] > 1.0
     assert acc[0, 0] == 0.0

@@ -13,7 +13,7 @@ from mpisph.correction import correction_matrix
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL, WALL_SLIP
 from mpisph.physics.implicit_viscosity import TOLERANCE, ImplicitViscosity, viscous_acceleration, viscous_pairs
-from mpisph.physics.mu_i import momentum
+from mpisph.physics.mu_i import momentum, pair_term_factors
 from mpisph.physics.mu_i_law import MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT
 from mpisph.physics.viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
 from mpisph.tensors import component, size, unpacked
@@ -49,13 +49,23 @@ def bed_lattice(dim, bed_kind, seed=1, jitter=0.0):
     return state
 
 
-def apply(s, u, mean=MEAN_HARMONIC):
-    """The pair term of Eq. 27 at u."""
-    out = np.zeros((s.n, s.x.shape[1]))
-    coef, inverse = np.zeros(len(s.nbr)), np.zeros((s.n, s.x.shape[1], s.x.shape[1]))
+def pairs(s, mean=MEAN_HARMONIC, deviatoric=False, dt=1e-3):
+    """The pair coefficients of Eq. 27's term (of its deviatoric counterpart, mu_i.pair_term_factors)
+    and the inverted diagonal blocks of the kick at step dt."""
+    dim = s.x.shape[1]
+    coef, inverse = np.zeros(len(s.nbr)), np.zeros((s.n, dim, dim))
     viscous_pairs(s.n, s.start, s.nbr, s.x, s.rho, s.eta, s.gamma_dot, s.mass, s.kind, s.normal, s.wall_distance,
-                  1.5, 2.0 * (s.x.shape[1] + 2), mean, s.k.params, 1e-3, coef, inverse)
-    viscous_acceleration(s.n, s.start, s.nbr, s.x, s.kind, s.normal, coef, u, out)
+                  1.5, *pair_term_factors(dim, deviatoric), mean, s.k.params, dt, coef, inverse)
+    return coef, inverse
+
+
+def apply(s, u, mean=MEAN_HARMONIC, deviatoric=False):
+    """The pair term of Eq. 27 at u (its deviatoric counterpart)."""
+    dim = s.x.shape[1]
+    _, radial, along = pair_term_factors(dim, deviatoric)
+    out = np.zeros((s.n, dim))
+    viscous_acceleration(s.n, s.start, s.nbr, s.x, s.kind, s.normal, pairs(s, mean, deviatoric)[0], radial, along,
+                         u, out)
     return out
 
 
@@ -94,28 +104,33 @@ def deviator(e):
     return e - np.einsum("iaa->i", e)[:, None, None] / dim * np.eye(dim)
 
 
-@pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
-@pytest.mark.parametrize("dim", [2, 3])
-def test_operator_is_the_explicit_pair_term_of_eq_27(dim, mean):
-    s = bed_lattice(dim, WALL)
-    zeros = np.zeros(s.n)
-    explicit = np.zeros((s.n, dim))
-    momentum(s.n, s.start, s.nbr, s.x, s.v, s.rho, zeros, s.eta, s.gamma_dot, s.mass, s.kind, s.normal,
-             s.wall_distance, 1.5, 0.0, 1.0, True, 2.0 * (dim + 2), mean, s.k.params, explicit)
-    implicit = apply(s, s.v, mean=mean)
-    np.testing.assert_allclose(implicit, explicit, rtol=0, atol=1e-12 * np.abs(explicit).max())
-
-
+@pytest.mark.parametrize("deviatoric", [False, True])
 @pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
 @pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_mass_weighted_operator_is_symmetric_and_dissipative(dim, bed_kind, mean):
+def test_operator_is_the_explicit_pair_term(dim, bed_kind, mean, deviatoric):
+    """The kick's operator is the explicit pair term: Eq. 27's, or the deviatoric one with its part
+    along the relative velocity (normal to a free-slip wall)."""
+    s = bed_lattice(dim, bed_kind)
+    zeros = np.zeros(s.n)
+    explicit = np.zeros((s.n, dim))
+    momentum(s.n, s.start, s.nbr, s.x, s.v, s.rho, zeros, s.eta, s.gamma_dot, s.mass, s.kind, s.normal,
+             s.wall_distance, 1.5, 0.0, 1.0, True, *pair_term_factors(dim, deviatoric), mean, s.k.params, explicit)
+    implicit = apply(s, s.v, mean=mean, deviatoric=deviatoric)
+    np.testing.assert_allclose(implicit, explicit, rtol=0, atol=1e-12 * np.abs(explicit).max())
+
+
+@pytest.mark.parametrize("deviatoric", [False, True])
+@pytest.mark.parametrize("mean", [MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT])
+@pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_mass_weighted_operator_is_symmetric_and_dissipative(dim, bed_kind, mean, deviatoric):
     s = bed_lattice(dim, bed_kind)
     rng = np.random.default_rng(2)
     moving = (s.kind == MOVING)[:, None]
     p, q = (np.where(moving, rng.normal(size=(s.n, dim)), 0.0) for _ in range(2))
     m = s.mass[:, None]
-    pAq, qAp, pAp = (np.sum(a * m * apply(s, b, mean=mean)) for a, b in ((p, q), (q, p), (p, p)))
+    pAq, qAp, pAp = (np.sum(a * m * apply(s, b, mean=mean, deviatoric=deviatoric)) for a, b in ((p, q), (q, p), (p, p)))
     assert pAq == pytest.approx(qAp, rel=1e-12)
     assert pAp < 0.0
 
@@ -190,6 +205,25 @@ def test_a_uniform_stress_pushes_nothing_next_to_a_wall(dim):
                 np.testing.assert_allclose(a[:, 1:], 0.0, atol=1e-9 * scale)
 
 
+@pytest.mark.parametrize("deviatoric", [False, True])
+@pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_pair_preconditioner_is_the_diagonal_block(dim, bed_kind, deviatoric):
+    """viscous_pairs inverts m_i (I - dt J_i), J_i = d a_i / d u_i probed column by column from the
+    operator itself, for Eq. 27's pair term and the deviatoric one, over either bed."""
+    s = bed_lattice(dim, bed_kind)
+    dt = 1e-3
+    _, inverse = pairs(s, deviatoric=deviatoric, dt=dt)
+    for i in np.flatnonzero(s.kind == MOVING)[::7]:
+        J = np.zeros((dim, dim))
+        for a in range(dim):
+            u = np.zeros((s.n, dim))
+            u[i, a] = 1.0
+            J[:, a] = apply(s, u, deviatoric=deviatoric)[i]
+        block = s.mass[i] * (np.eye(dim) - dt * J)
+        np.testing.assert_allclose(inverse[i] @ block, np.eye(dim), atol=1e-12)
+
+
 @pytest.mark.parametrize("dim", [2, 3])
 def test_corrected_stress_preconditioner_is_the_diagonal_block(dim):
     """stress_blocks inverts m_i (I - dt J_i) with J_i = d a_i / d u_i probed column by column from
@@ -216,14 +250,14 @@ class NoHalo:
         pass
 
 
-@pytest.mark.parametrize("form", ["pair", "corrected", "deviatoric"])
+@pytest.mark.parametrize("form", ["pair", "deviatoric_pair", "corrected", "deviatoric"])
 @pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
 @pytest.mark.parametrize("dim", [2, 3])
 def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
     """At 1000 times the explicit limit of Eq. 39 the kick solves u - dt a_visc[u] = b to the
-    tolerance and takes kinetic energy out, never in, with either viscous form and the corrected
-    form's deviatoric stress (whose preconditioner is still the full stress's diagonal block)."""
-    corrected, deviatoric = form != "pair", form == "deviatoric"
+    tolerance and takes kinetic energy out, never in, with either viscous form, whole or deviatoric
+    (the corrected deviatoric stress's preconditioner is still the full stress's diagonal block)."""
+    corrected, deviatoric = "pair" not in form, "deviatoric" in form
     s = bed_lattice(dim, bed_kind, jitter=0.2 if corrected else 0.0)
     dt = 1000.0 * 0.05 * s.rho.min() * s.k.h**2 / s.eta.max()
     B = correction(s)
@@ -235,13 +269,14 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
                           halo=NoHalo())
     ctx.refresh = lambda names: None
     ctx.correction_matrices = lambda: B
+    factor, radial, along = pair_term_factors(dim, deviatoric)
     scheme = SimpleNamespace(corrected=corrected, deviatoric_stress=deviatoric, beta_max=1.5,
-                             viscous_factor=2.0 * (dim + 2), mean=MEAN_SECANT)
+                             viscous_factor=factor, radial=radial, along=along, mean=MEAN_SECANT)
     solver = ImplicitViscosity(scheme, u_ref=1.0)
     solver.kick(ctx, dt)
     u, b = pa.v, s.v
     moving = s.kind == MOVING
-    a_visc = stress_apply(s, u, B, deviatoric) if corrected else apply(s, u, mean=MEAN_SECANT)
+    a_visc = stress_apply(s, u, B, deviatoric) if corrected else apply(s, u, MEAN_SECANT, deviatoric)
     error = (u - dt * a_visc - b)[moving]
     rms = np.sqrt(np.sum(s.mass[moving, None] * error**2) / s.mass[moving].sum())
     assert 2 < solver.iterations < 200

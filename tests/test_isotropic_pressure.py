@@ -39,7 +39,7 @@ def accelerations(x, kind, mass, rho, k, start, nbr, p, form, B):
     zeros, normal = np.zeros(n), np.zeros((n, dim))
     if form == "symmetric":
         momentum(n, start, nbr, x, np.zeros((n, dim)), rho, p, zeros, zeros, mass, kind, normal, zeros, 1.5, 0.0,
-                 1.0, True, 0.0, MEAN_HARMONIC, k.params, acc)
+                 1.0, True, 0.0, 1.0, 0.0, MEAN_HARMONIC, k.params, acc)
     else:
         T = np.zeros((n, dim, dim))
         isotropic_pressure_stress(n, kind, p, B, T)

@@ -9,7 +9,7 @@ import pytest
 from mpisph import references
 from mpisph.errors import InputError
 from mpisph.materials import MuIGranular
-from mpisph.physics.mu_i import momentum
+from mpisph.physics.mu_i import momentum, pair_term_factors
 from mpisph.physics.viscous_stress import strain_rate, stress_divergence, viscous_force_tensor
 from mpisph.physics.mu_i_law import (MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT, friction, grain_density_ratio,
                                      pair_viscosity, regularised_viscosity, residual_viscosity)
@@ -206,7 +206,7 @@ def viscous_acceleration(dim, h_over_dp, corrected):
         stress_divergence(n, start, nbr, x, rho, T, mass, kind, np.zeros((n, dim)), k.params, acc)
     else:
         momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, 1.0, True,
-                 2.0 * (dim + 2), MEAN_HARMONIC, k.params, acc)
+                 *pair_term_factors(dim, False), MEAN_HARMONIC, k.params, acc)
     return acc[inner, 0] / (2 * 2.0 / 1000.0)
 
 
@@ -233,11 +233,102 @@ def test_artificial_viscosity_of_eq_38_is_the_pair_viscosity_of_eq_27(dim):
     eta = np.full(n, 1000.0 * references.pair_viscosity_of_alpha(alpha, k.h, c0, dim))
     by_alpha, by_eta = np.zeros((n, dim)), np.zeros((n, dim))
     momentum(n, start, nbr, x, v, rho, zeros, zeros, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, alpha, c0,
-             False, 0.0, MEAN_HARMONIC, k.params, by_alpha)
+             False, 0.0, 1.0, 0.0, MEAN_HARMONIC, k.params, by_alpha)
     momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, np.zeros((n, dim)), zeros, 1.5, 0.0, c0,
-             False, 2.0 * (dim + 2), MEAN_HARMONIC, k.params, by_eta)
+             False, *pair_term_factors(dim, False), MEAN_HARMONIC, k.params, by_eta)
     assert np.abs(by_alpha[inner, 0]).min() > 1e-3  # about 0.8 of 2 nu, the lattice's share
     np.testing.assert_allclose(by_alpha, by_eta, rtol=1e-12, atol=1e-12 * np.abs(by_eta).max())
+
+
+def viscous_divergences(dim, h_over_dp, v_of_x):
+    """dv/dt of the velocity field v_of_x(x) at eta = 2 Pa s, rho = 1000 on a lattice's inner
+    particles: the deviatoric corrected stress's divergence (exact for a quadratic field), the
+    deviatoric pair term and Eq. 27's."""
+    x, kind, start, nbr, k, inner = lattice(dim, h_over_dp)
+    n = len(x)
+    rho, eta, zeros, normal = np.full(n, 1000.0), np.full(n, 2.0), np.zeros(n), np.zeros((n, dim))
+    mass, v = rho * 0.01**dim, v_of_x(x)
+    B = np.zeros((n, size(dim)))
+    correction_matrix(n, start, nbr, x, mass, rho, kind, k.params, B)
+    strain, T = np.zeros((n, size(dim))), np.zeros((n, dim, dim))
+    strain_rate(n, start, nbr, x, v, rho, mass, kind, normal, zeros, 1.5, B, k.params, strain, np.zeros(n))
+    viscous_force_tensor(n, kind, strain, eta, B, True, T)
+    exact = np.zeros((n, dim))
+    stress_divergence(n, start, nbr, x, rho, T, mass, kind, normal, k.params, exact)
+    pairs = {}
+    for deviatoric in (True, False):
+        pairs[deviatoric] = np.zeros((n, dim))
+        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, normal, zeros, 1.5, 0.0, 1.0, False,
+                 *pair_term_factors(dim, deviatoric), MEAN_HARMONIC, k.params, pairs[deviatoric])
+    return exact[inner], pairs[True][inner], pairs[False][inner]
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_deviatoric_pair_term_is_the_divergence_of_2_eta_dev_eps(dim):
+    """On v = (x y, 0[, 0]), lap v = 0 and grad div v = (0, 1[, 0]): the deviatoric stress gives
+    eta (1 - 2 / D) grad div v, none in 2D, and so does the deviatoric pair term: none to round-off
+    in 2D (the lattice's kernel sums are even), in 3D the square lattice's share at h = 1.3 dp of it
+    (0.869, as Eq. 27's above); Eq. 27's gives 2 eta grad div v, its bulk viscosity
+    (1 + 2 / D) eta. On a general quadratic field, resolved (h = 3 dp), the deviatoric pair term
+    gives eta (lap v + (1 - 2 / D) grad div v) and Eq. 27's eta (lap v + 2 grad div v)
+    (physics/mu_i.pair_term_factors)."""
+    def shear_free(x):
+        v = np.zeros_like(x)
+        v[:, 0] = x[:, 0] * x[:, 1]
+        return v
+
+    exact, deviatoric, eq_27 = viscous_divergences(dim, 1.3, shear_free)
+    target = 2.0 / 1000.0 * (1.0 - 2.0 / dim)  # eta / rho (1 - 2 / D)
+    np.testing.assert_allclose(exact[:, 1], target, atol=1e-9 * 2.0 / 1000.0)
+    if dim == 2:
+        assert np.abs(deviatoric).max() < 1e-12 * 2.0 / 1000.0
+    else:
+        np.testing.assert_allclose(deviatoric[:, 0::2], 0.0, atol=1e-12 * target)
+        np.testing.assert_allclose(deviatoric[:, 1] / target, 0.869, atol=0.002)
+    assert eq_27[:, 1].min() > 1.5 * 2.0 / 1000.0  # 2 eta / rho on this lattice's 81-87 % share
+
+    def general(x):
+        v = np.zeros_like(x)
+        v[:, 0] = x[:, 1] ** 2 + 0.5 * x[:, 0] * x[:, 1] + 0.3 * x[:, 0] ** 2
+        v[:, 1] = -0.2 * x[:, 0] ** 2 + 0.4 * x[:, 0] * x[:, 1] + 0.6 * x[:, 1] ** 2
+        if dim == 3:
+            v[:, 2] = 0.7 * x[:, 0] * x[:, 2] - 0.3 * x[:, 1] ** 2
+            v[:, 0] += 0.4 * x[:, 2] ** 2 + 0.2 * x[:, 1] * x[:, 2]
+        return v
+
+    lap, grad_div = {2: ([2.6, 0.8], [1.0, 1.7]), 3: ([3.4, 0.8, -0.6], [1.7, 1.7, 0.0])}[dim]
+    lap, grad_div = np.array(lap) * 2.0 / 1000.0, np.array(grad_div) * 2.0 / 1000.0  # times eta / rho
+    _, deviatoric, eq_27 = viscous_divergences(dim, 3.0, general)
+    scale = np.abs(lap).max()
+    np.testing.assert_allclose(deviatoric, np.broadcast_to(lap + (1.0 - 2.0 / dim) * grad_div, deviatoric.shape),
+                               atol=0.01 * scale)
+    np.testing.assert_allclose(eq_27, np.broadcast_to(lap + 2.0 * grad_div, eq_27.shape), atol=0.01 * scale)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_deviatoric_pair_term_brakes_a_rigid_rotation(dim):
+    """A lattice block turning as a rigid body (v = omega x r about the last axis) strains nowhere:
+    Eq. 27's central pair forces vanish pair by pair; the deviatoric pair term's part along v_ij is
+    not central and, where the kernel is cut by the block's faces, brakes the rotation with a
+    torque, while the total force stays zero (its pairs are antisymmetric)."""
+    x, kind, start, nbr, k, _ = lattice(dim, 1.3, n=12)
+    n = len(x)
+    rho, eta, zeros, normal = np.full(n, 1000.0), np.full(n, 2.0), np.zeros(n), np.zeros((n, dim))
+    mass, r = rho * 0.01**dim, x - x.mean(axis=0)
+    v = np.zeros((n, dim))
+    v[:, 0], v[:, 1] = -r[:, 1], r[:, 0]  # omega = 1 rad/s
+    for deviatoric in (False, True):
+        acc = np.zeros((n, dim))
+        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, normal, zeros, 1.5, 0.0, 1.0, False,
+                 *pair_term_factors(dim, deviatoric), MEAN_HARMONIC, k.params, acc)
+        force = mass[:, None] * acc
+        torque = np.sum(r[:, 0] * force[:, 1] - r[:, 1] * force[:, 0])
+        scale = 2.0 * (0.12**dim)  # eta omega over the block's volume [N m]
+        np.testing.assert_allclose(force.sum(axis=0), 0.0, atol=1e-12 * scale / 0.12)
+        if deviatoric:
+            assert torque < -0.1 * scale
+        else:
+            np.testing.assert_allclose(acc, 0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize("dim", [2, 3])

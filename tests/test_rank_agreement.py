@@ -83,6 +83,9 @@ CASES = {
     # the same with the deviatoric viscous stress, the regularisation time of a column that comes to rest
     "lube_collapse_2d deviatoric": (["--set", "dp=0.005", "viscous_form=corrected_stress", "viscous_stress=deviatoric",
                                      "m_0=40", "--t-end", "0.06", "--output-interval", "0.03"], 0.5),
+    # the deviatoric pair term: its part along the relative velocity, in the implicit kick too
+    "lube_collapse_2d deviatoric_pairs": (["--set", "dp=0.005", "viscous_stress=deviatoric", "m_0=40", "--t-end",
+                                           "0.06", "--output-interval", "0.03"], 0.5),
     # the mu(I) density by kernel summation near a free surface
     "lube_collapse_2d reinit": (["--set", "dp=0.005", "density_reinit=free_surface", "--t-end", "0.06",
                                  "--output-interval", "0.03"], 0.5),

@@ -13,12 +13,12 @@ the velocity at a frozen viscosity:
 
 - ``PairTerm``, the pair term of Eq. 27,
   a_visc[u]_i = sum_j m_j 2 (D + 2) eta_ij (u_ij . r_ij) grad_i W_ij / (r^2 rho_i rho_j),
-  eta_ij the scheme's pair viscosity (mu_i_law.pair_viscosity). On a Morris
-  wall partner u_ij is beta (u_i - u_w) (Eqs. 34-36). On a free-slip wall the
-  pair force is projected on the wall normal n: the explicit form
-  beta (d.n)(n.u) d has a tangential part that cancels over a flat wall's
-  neighbours but would make the system unsymmetric; projected it is
-  beta (d.n)^2 (n.u) n.
+  eta_ij the scheme's pair viscosity (mu_i_law.pair_viscosity), or the
+  deviatoric pair term, which adds a part along u_ij (mu_i.pair_term_factors).
+  On a Morris wall partner u_ij is beta (u_i - u_w) (Eqs. 34-36). On a free-slip
+  wall the pair offset d is taken along the wall's normal n, as in the explicit
+  form (walls.along_wall_normal): the pair force is beta (d.n)^2 (n.u) n, and
+  the part along u_ij beta r^2 (n.u) n, the system stays symmetric.
 - ``CorrectedStress``, the divergence of 2 eta eps B of viscous_stress.py,
   the adjoint of its gradient, walls included: an iteration takes two pair
   passes (the gradient of the search direction, then the divergence of its
@@ -64,12 +64,14 @@ MAX_ITERATIONS = 2000
 
 
 @njit(cache=True)
-def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor, mean,
-                  k, dt, coef, inverse):
-    """The pair term of Eq. 27 as a_visc[u]_i = sum_s coef_s e_s (e_s . (u_i - u_j)) over the
-    neighbour list (e_s = r_ij, for a free-slip wall partner walls.along_wall_normal; coef_s <= 0, beta
-    of Eq. 36 included for wall partners), and the preconditioner: inverse_i, the inverse of the
-    diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving particles (identity elsewhere).
+def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor,
+                  radial, along, mean, k, dt, coef, inverse):
+    """The viscous pair term (mu_i.momentum) as a_visc[u]_i = sum_s coef_s (radial e_s (e_s . u_ij)
+    + along r_s^2 P_s u_ij) over the neighbour list, u_ij = u_i - u_j (e_s = r_ij, for a free-slip
+    wall partner walls.along_wall_normal, where P_s projects on the wall's normal, the identity
+    elsewhere; coef_s <= 0, beta of Eq. 36 included for wall partners), and the preconditioner:
+    inverse_i, the inverse of the diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving
+    particles (identity elsewhere).
     Only coef is stored: the passes recompute e_s from the positions, at about the speed of
     reading three stored numbers a pair and without their 24 bytes a pair (docs/PERFORMANCE.md)."""
     dim = xc.shape[1]
@@ -95,12 +97,20 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                 e = (d0, d1, d2)
                 for a in range(dim):
                     for b in range(dim):
-                        block[a, b] -= dt * c * e[a] * e[b]
+                        block[a, b] -= dt * c * radial * e[a] * e[b]
+                if along > 0.0:
+                    c_along = dt * c * along * r * r
+                    for a in range(dim):
+                        if kind[j] == WALL_SLIP:  # the wall's normal only: n n
+                            for b in range(dim):
+                                block[a, b] -= c_along * normal[j, a] * normal[j, b]
+                        else:
+                            block[a, a] -= c_along
         store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
 @njit(cache=True)
-def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, out):
+def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, radial, along, u, out):
     """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``, a wall partner's u its
     wall velocity (zero in a search direction)."""
     dim = u.shape[1]
@@ -110,15 +120,25 @@ def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, u, out):
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
                 e0, e1, e2 = pair_difference(xc, i, j)
-                if kind[j] == WALL_SLIP:  # off the common path
+                r2 = e0 * e0 + e1 * e1 + e2 * e2
+                slip = kind[j] == WALL_SLIP
+                if slip:  # off the common path
                     e0, e1, e2 = along_wall_normal(j, normal, e0, e1, e2)
-                du = (u[i, 0] - u[j, 0]) * e0 + (u[i, 1] - u[j, 1]) * e1
+                w0, w1, w2 = pair_difference(u, i, j)
+                du = w0 * e0 + w1 * e1
                 if dim == 3:
-                    du += (u[i, 2] - u[j, 2]) * e2
-                c = coef[s] * du
+                    du += w2 * e2
+                c = coef[s] * radial * du
                 a0 += c * e0
                 a1 += c * e1
                 a2 += c * e2
+                if along > 0.0:  # r^2 P u_ij, on a free-slip wall P u = (n.u) n
+                    if slip:
+                        w0, w1, w2 = along_wall_normal(j, normal, w0, w1, w2)
+                    c = coef[s] * along * r2
+                    a0 += c * w0
+                    a1 += c * w1
+                    a2 += c * w2
         out[i, 0] = a0
         out[i, 1] = a1
         if dim == 3:
@@ -207,13 +227,15 @@ class PairTerm:
         pa, s = ctx.particles, self.scheme
         self.coef = ctx.workspace.get("cg_coef", len(ctx.nbr))
         viscous_pairs(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.gamma_dot, pa.mass, pa.kind,
-                      pa.normal, pa.wall_distance, s.beta_max, s.viscous_factor, s.mean, ctx.kernel.params, dt,
-                      self.coef, inverse)
+                      pa.normal, pa.wall_distance, s.beta_max, s.viscous_factor, s.radial, s.along, s.mean,
+                      ctx.kernel.params, dt, self.coef, inverse)
 
     def apply(self, ctx, u, out):
         """out = a_visc[u] of the owned particles, u current on the ghosts."""
         pa = ctx.particles
-        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, u, out)
+        s = self.scheme
+        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, s.radial, s.along,
+                             u, out)
 
 
 class CorrectedStress:

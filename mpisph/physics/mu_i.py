@@ -34,20 +34,25 @@ law magnifies such a deficit about eightfold in the speed of a uniform flow
 (docs/VALIDATION.md). With ``Case.density_reinit`` the density is reset by
 kernel summation (001_ Eq. 8, fluid.py) once per configuration.
 
-The option ``viscous_stress = deviatoric`` (with the corrected stress) takes the
-viscous stress as 2 eta dev(eps), dev(eps) = eps - tr(eps) / D I: Eq. 4 with xi = 0,
-the fluid "with no bulk viscosity" that 004_ says Eq. 10 is. The full stress 2 eta eps
-has the isotropic part 2 eta tr(eps) / D, a bulk viscosity as large as the shear
-viscosity, which below yield is about tau_y m_0 (Eq. 53). A released column sheds
-its pressure at the face by expanding, and a bulk viscosity resists the
-expansion: with m_0 = 120 s the full corrected stress starts the a = 0.5 column
-0.077 s after release, the deviatoric one at 0.054 s as at m_0 = 1.2 s
-(tests/test_mu_i_collapse.py); Eq. 27's pair term, which has a bulk part of its
-own, only at 0.55 s, and sooner with stiffer grains (smaller K_t;
-docs/COLLAPSES.md). A regularisation time long enough for a deposit to stop
-(m_0 = 40 s for Lube's columns, granular_flow.DEVIATORIC_MU_I) then no longer
-delays the collapse. Without the bulk part nothing damps the grains' acoustic
-noise: on the steady incline the free surface erupts (docs/INCLINE.md).
+The option ``viscous_stress = deviatoric`` takes the viscous stress as 2 eta dev(eps),
+dev(eps) = eps - tr(eps) / D I: Eq. 4 with xi = 0, the fluid "with no bulk viscosity"
+that 004_ says Eq. 10 is. The full stress 2 eta eps has the isotropic part
+2 eta tr(eps) / D, a bulk viscosity 2 eta / D, and Eq. 27's pair term tends to
+eta (lap v + 2 grad div v), a bulk viscosity (1 + 2 / D) eta (``pair_term_factors``);
+below yield eta is about tau_y m_0 (Eq. 53). A released column sheds its pressure at
+the face by expanding, and a bulk viscosity resists the expansion: with m_0 = 120 s
+the full corrected stress starts the a = 0.5 column 0.077 s after release, the
+deviatoric one at 0.054 s as at m_0 = 1.2 s; Eq. 27's pair term not within 0.1 s
+(0.55 s, and sooner with stiffer grains, smaller K_t; docs/COLLAPSES.md), the
+deviatoric pair term at 0.050 s, against 0.045 s at m_0 = 1.2 s and Eq. 27's 0.070 s
+there (tests/test_mu_i_collapse.py). With the corrected stress the option keeps its
+deviator; with the pair term it takes the pair form whose continuum limit is the
+deviatoric stress's divergence at a uniform eta (``pair_term_factors``: Morris et
+al.'s form in 2D), which, not being central, does not conserve angular momentum
+exactly. A regularisation time long enough for a deposit to stop (m_0 = 40 s for
+Lube's columns, granular_flow.DEVIATORIC_MU_I) then no longer delays the collapse.
+Without the bulk part nothing damps the grains' acoustic noise: on the steady
+incline the free surface erupts (docs/INCLINE.md).
 
 The option ``pressure_form = isotropic`` replaces the pressure pairs of Eq. 27
 by the same divergence of the stress T_i = -p_i s_i B_i, s_i = tr(A_i) / D with
@@ -147,7 +152,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..materials import MuIGranular
@@ -236,10 +240,12 @@ def isotropic_pressure_stress(n, kind, p, B, T):
 
 @njit(cache=True)
 def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, alpha,
-             c0, pair_pressure, viscous_factor, mean, k, acc):
+             c0, pair_pressure, viscous_factor, radial, along, mean, k, acc):
     """acc += the pressure, artificial-viscosity and viscous accelerations (004_ Eqs. 27, 37-38);
     ``pair_pressure`` False leaves the pressure out (to the isotropic pressure), ``viscous_factor`` 0
-    the viscous part (to the corrected stress, or the implicit kick)."""
+    the viscous part (to the corrected stress, or the implicit kick). The viscous pair force is
+    eta_ij (radial (v_ij . e) e + along v_ij) m_j W' / (r rho_i rho_j), e = r_ij / r, eta_ij the pair
+    viscosity times ``viscous_factor`` (``PairViscosity``)."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
@@ -261,15 +267,20 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, w
             scalar = -(p[i] / rho_i2 + p_j / rho_j2) if pair_pressure else 0.0
             if alpha > 0.0:
                 scalar += alpha * k.h * c0 * vr_r2 / (0.5 * (rho[i] + rho_j))  # -Pi_ij
-            if viscous_factor > 0.0:
-                eta_sum = eta[i] + eta_j
-                if eta_sum > 0.0:
-                    scalar += pair_viscosity(viscous_factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean) * vr_r2 \
-                        / (rho[i] * rho_j)
+            eta_ij = 0.0
+            if viscous_factor > 0.0 and eta[i] + eta_j > 0.0:
+                eta_ij = pair_viscosity(viscous_factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
+                if radial > 0.0:
+                    scalar += radial * eta_ij * vr_r2 / (rho[i] * rho_j)
             f = mass[j] * pair_dw(k, r, i, j) / r
             a0 += f * scalar * d0
             a1 += f * scalar * d1
             a2 += f * scalar * d2
+            if along > 0.0 and eta_ij > 0.0:  # the relative velocity's own part (viscous_stress = deviatoric)
+                g = f * along * eta_ij / (rho[i] * rho_j)
+                a0 += g * u0
+                a1 += g * u1
+                a2 += g * u2
         acc[i, 0] += a0
         acc[i, 1] += a1
         if dim == 3:
@@ -312,6 +323,21 @@ def inertial_number_and_friction(n, rho, rho_s, m, I, mu):
         mu[i] = friction(I[i], m)
 
 
+def pair_term_factors(dim, deviatoric):
+    """(eta factor, radial, along) of the viscous pair force eta_ij (radial (v_ij . e) e + along v_ij)
+    m_j W' / (r rho_i rho_j) (``momentum``). On a smooth velocity at a uniform eta the two parts tend
+    to (radial / (D + 2)) eta (lap v + 2 grad div v) / 2 and along eta lap v / 2 (the kernel's
+    second moments, sum_j V_j W' r = -D). Eq. 27 as printed is radial = 2 (D + 2) alone: eta (lap v +
+    2 grad div v), whose isotropic part is a bulk viscosity (1 + 2 / D) eta. The deviatoric
+    stress's divergence eta (lap v + (1 - 2 / D) grad div v) takes radial = (D + 2)(D - 2) / D and
+    along = (D + 2) / D: Morris et al.'s (1997) form alone in 2D, 5/3 of each part in 3D (the
+    form of Espanol and Revenga 2003 with no bulk viscosity). Eq. 27's keeps its factor in eta_ij
+    (the bits of its runs); the deviatoric one's factors stay apart."""
+    if deviatoric:
+        return 1.0, (dim + 2.0) * (dim - 2.0) / dim, (dim + 2.0) / dim
+    return 2.0 * (dim + 2), 1.0, 0.0
+
+
 class GranularMomentum(ForceTerm):
     """Pressure, artificial viscosity and mu(I) viscosity in one pair sum (module docstring)."""
 
@@ -333,7 +359,7 @@ class GranularMomentum(ForceTerm):
         pair_term = viscous and not s.corrected
         momentum(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.v, pa.rho, pa.p, pa.eta, pa.gamma_dot, pa.mass, pa.kind,
                  pa.normal, pa.wall_distance, s.beta_max, s.alpha, s.material.c0, not s.isotropic,
-                 s.viscous_factor if pair_term else 0.0, s.mean, ctx.kernel.params, acc)
+                 s.viscous_factor if pair_term else 0.0, s.radial, s.along, s.mean, ctx.kernel.params, acc)
         if s.isotropic:
             stress_divergence(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.T_pressure, pa.mass, pa.kind,
                               pa.normal, ctx.kernel.params, acc)
@@ -366,8 +392,8 @@ class MuIScheme(Scheme):
     of either form taken backward in time in the kick (implicit_viscosity.py), and
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
     (mu_i_law.pair_viscosity; ghosts then need gamma_dot too), and
-    ``viscous_stress``: ``full`` (2 eta eps) or ``deviatoric`` (2 eta dev(eps), Eq. 4 with no bulk
-    viscosity; corrected_stress only), and
+    ``viscous_stress``: ``full`` (2 eta eps, or Eq. 27's pair term as printed) or ``deviatoric``
+    (2 eta dev(eps), Eq. 4 with no bulk viscosity, or the pair term that tends to its divergence), and
     ``pressure_form``: ``symmetric`` (Eq. 27) or ``isotropic``, and ``law_pressure``: ``state``
     (the grains' pressure of Eq. 42), ``carried`` (the share of it the pairs carry) or
     ``carried_mean`` (its kernel mean) in the friction law, and ``law_strain_rate``: ``own`` (each
@@ -389,9 +415,6 @@ class MuIScheme(Scheme):
         self.corrected = self.option_choice("viscous_form", VISCOUS_FORMS) == "corrected_stress"
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
         self.deviatoric_stress = self.option_choice("viscous_stress", VISCOUS_STRESSES) == "deviatoric"
-        if self.deviatoric_stress and not self.corrected:
-            raise InputError("scheme mu_i: viscous_stress = deviatoric needs viscous_form = corrected_stress "
-                             "(the pair term of Eq. 27 carries no stress tensor to take the deviator of)")
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
         law_pressure = self.option_choice("law_pressure", LAW_PRESSURES)
@@ -401,7 +424,7 @@ class MuIScheme(Scheme):
         self.smoothed_rate = law_strain_rate != "own"
         self.deviatoric_rate = law_strain_rate == "deviatoric_kernel_mean"
         self.uses_B = self.corrected or self.isotropic or self.carried
-        self.viscous_factor = 2.0 * (case.dim + 2)
+        self.viscous_factor, self.radial, self.along = pair_term_factors(case.dim, self.deviatoric_stress)
         self.h = kernel.h
         self.params = self.material.params
         require_wall_distances(case, self.name)
