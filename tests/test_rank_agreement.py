@@ -141,9 +141,10 @@ def test_bitwise_identical(runs, case):
 
 
 # the mu(I) incline: its first time step after a restart takes the viscosity stored in the frame;
+# the mu(I) column: its implicit kick's first guess extrapolates from the two accelerations in the frame;
 # the outermost normals: recomputed, not read from the frame (a restart takes the frame's parameters)
 @pytest.mark.parametrize("case", ["dam_break_2d", "taylor_green", "column_collapse_2d", "inclined_plane",
-                                  "cube_failure_3d outermost_normals"])
+                                  "lube_collapse_2d", "cube_failure_3d outermost_normals"])
 @pytest.mark.parametrize("ranks", [1, 3])
 def test_restart_continues_the_run(runs, case, ranks, tmp_path):
     uninterrupted = runs[case][2]

@@ -455,7 +455,10 @@ class MuIScheme(Scheme):
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
                                   "search direction of the implicit viscous kick [m/s]"),
                             Field("viscous_acceleration", ("dim",), np.float64,
-                                  "viscous acceleration of the last implicit kick, its next first guess [m/s^2]"))
+                                  "viscous acceleration of the last implicit kick [m/s^2]"),
+                            Field("viscous_acceleration_change", ("dim",), np.float64,
+                                  "its change from the kick before over the step, from which the next kick's first "
+                                  "guess extrapolates [m/s^3]"))
             if self.corrected:
                 self.fields += (Field("viscous_direction_stress", ("dim", "dim"), np.float64,
                                       "2 eta eps B of the implicit kick's search direction [Pa]"),)
@@ -476,6 +479,8 @@ class MuIScheme(Scheme):
     def start(self, ctx):
         self.state(ctx)
         ctx.refresh(self.state_fields)
+        if self.implicit:
+            self.implicit_viscosity.history = False  # no kick before the first
 
     def state(self, ctx):
         pa = ctx.particles
