@@ -899,11 +899,11 @@ def inclined_plane_deep(ranks):
 REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
 
 
-def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None):
+def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, frames=20):
     """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to ``t_end``,
-    by default 6 sqrt(H_0/g) (at least 0.6 s): its diagnostics, last frame, command, runout ratio,
-    how far from rest it is between its last two frames (measure.edge_rest_ratio), and its onset
-    (measure.collapse_onset)."""
+    by default 6 sqrt(H_0/g) (at least 0.6 s), with ``frames`` frames: its diagnostics, last frame,
+    command, runout ratio, how far from rest it is between its last two frames
+    (measure.edge_rest_ratio), and its onset (measure.collapse_onset)."""
     H0 = a * length
     default_end = max(0.6, 6.0 * np.sqrt(H0 / 9.81))
     settings = [f"a={a}", f"dp={dp:.12g}", *variant]
@@ -912,9 +912,10 @@ def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None):
         t_end = default_end
     else:
         name += f"_to{t_end:g}"
-    frames, diag, shown = run(name, case,
-                              ["--set", *settings, "--t-end", f"{t_end:.3g}", "--output-interval", f"{t_end / 20:.3g}"],
-                              ranks)
+    if frames != 20:
+        name += f"_frames{frames}"
+    frames, diag, shown = run(name, case, ["--set", *settings, "--t-end", f"{t_end:.3g}", "--output-interval",
+                                           f"{t_end / frames:.3g}"], ranks)
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
@@ -988,7 +989,7 @@ def lube_collapse_2d(ranks):
                  (f"a = {a_k:g} with {what}: H_inf / L_0; edge speed / peak; onset [s]",
                   f"{height:.3f}; {r['rest']:.1e}; {r['onset']:.3f}", f"{a_k:g}; <= {REST:g}; -", "-", "-")]
     exponent, fits = _planar_fits(a, ratio)
-    rows += fits
+    rows += fits + _fit_spread("", (), runs, L0, dp, ranks)
     for channel, (n, spread) in references.PLANAR_RUNOUT_EXPONENTS.items():
         rows.append((f"high-a exponent against Balmforth & Kerswell's {channel} ({n:g} +- {spread:g})",
                      f"{exponent:.2f}", f"{n:g}", f"{exponent - n:+.2f}", "-"))
@@ -1023,18 +1024,19 @@ def lube_collapse_2d(ranks):
             "columns with granular_flow.DEVIATORIC_MU_I: the corrected stress without its bulk part (Eq. 4 with "
             "xi = 0, the fluid 'with no bulk viscosity' 004_ says Eq. 10 is) and m_0 = 40 s, whose columns start "
             "as soon as the defaults' and whose deposits stop, the a = 0.5 one with its top in place; they run out "
-            "less at small a, where part of the defaults' agreement with 1.2 a is the creep, and their high-a "
-            "exponent moves by about 0.1 with the step sequence (a = 6 to 3 s on one rank with frames every 0.05 s: "
-            "6.13 at 6 sqrt(H_0 / g), exponent 0.86; docs/COLLAPSES.md); "
+            "less at small a, where part of the defaults' agreement with 1.2 a is the creep; "
             "(3) the top of the a = 1 column sinks by a fifth, where "
             "Lube's stays put below a = 1.15. The explicit step of Eq. 39 gives the implicit kick's runout. "
             "The rows 'CONSISTENT_MU_I' run the same five columns with granular_flow.CONSISTENT_MU_I, the options "
             "that bring the CI-sized incline to its uniform flow (the corrected stress taken implicitly, the "
             "isotropic pressure, the law's kernel means of s p and of the strain rate's deviator; "
-            "docs/INCLINE.md). Their high-a exponent is within issue 14's tolerance of 2/3, where the defaults' is "
-            "not, but they come to rest no better, and the "
-            "a = 1 column is still slumping at the end (0.6 s): run on to 1.2 s (`--t-end 1.2`) its centre "
-            "sinks from 0.77 to 0.68 H_0 and its runout grows from 1.22 to 1.42 (scripts/collapse_deposit.py).")
+            "docs/INCLINE.md); they come to rest no better than the defaults. The collapses magnify round-off: "
+            "a run whose frames fall at other times takes another sequence of time steps, and its runouts "
+            "differ from the first's by a few per cent, which moves an exponent fitted to two columns (a = 4 "
+            "and 6) by up to about 0.15. So the slope and the exponent are asserted on their means over "
+            f"{len(STEP_SEQUENCES)} step sequences (frames every T / n, n = "
+            + ", ".join(f"{n}" for n in STEP_SEQUENCES) + "; the rows 'mean over', with their spread), "
+            "and the rows of one sequence (n = 20, the runs drawn) are shown beside them.")
     return "Planar collapses of sand columns, mu(I) (004_ Sec. 5.2, Lube et al. 2005)", runs[0]["cmd"], rows, image, note
 
 
@@ -1052,20 +1054,55 @@ def _variant_collapses(label, variant, aspects, L0, dp, ranks, ax, marker):
             (f"{label}: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
              f"<= {REST:g}", "-", f"{REST:g}", all(r["rest"] <= REST for r in runs)),
             (f"{label}: onset [s]", " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-")]
-    return rows + _planar_fits(a, ratio, f"{label}: ")[1]
+    return rows + _planar_fits(a, ratio, f"{label}: ")[1] + _fit_spread(f"{label}: ", variant, runs, L0, dp, ranks)
+
+
+SLOPE, EXPONENT = (1.2, 0.25), (0.67, 0.1)  # issue 14: the planar runouts' low-a slope and high-a exponent
+# Frames per planar run: the time steps land on the frame times, so each number gives its own sequence of
+# steps. The runs differ by round-off at first, which the collapses magnify to a few per cent of a runout
+# (docs/COLLAPSES.md): the fits are asserted on their means over these sequences, the first validate's runs'.
+STEP_SEQUENCES = (20, 17, 18, 19, 21, 22)
+
+
+def _slope_and_exponent(a, ratio):
+    """The slope through the origin of the runout ratios ``ratio`` of the columns a <= 1 and the
+    exponent of those a >= 4."""
+    low, high = a <= 1.0, a >= 4.0
+    slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
+    return slope, float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
 
 
 def _planar_fits(a, ratio, label=""):
-    """(exponent, rows) of planar runout ratios ``ratio`` at aspect ratios ``a``: the slope of the
-    columns a <= 1 through the origin and the exponent of those a >= 4, each row asserted with
-    issue 14's tolerance (1.2 +- 0.25, 0.67 +- 0.1); ``label`` starts the rows' names."""
-    low, high = a <= 1.0, a >= 4.0
-    slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
-    exponent = float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
-    return exponent, [(f"{label}low-a slope (a = 0.5, 1; through the origin)", f"{slope:.2f}", "1.2",
-                       f"{slope - 1.2:+.2f}", "0.25", abs(slope - 1.2) <= 0.25),
-                      (f"{label}high-a exponent (a = 4, 6)", f"{exponent:.2f}", "0.67", f"{exponent - 0.67:+.2f}",
-                       "0.1", abs(exponent - 0.67) <= 0.1)]
+    """(exponent, rows) of planar runout ratios ``ratio`` at aspect ratios ``a``, one sequence of
+    time steps: the slope of the columns a <= 1 through the origin and the exponent of those a >= 4,
+    beside issue 14's values (asserted over the step sequences, ``_fit_spread``); ``label`` starts
+    the rows' names."""
+    slope, exponent = _slope_and_exponent(a, ratio)
+    return exponent, [(f"{label}low-a slope (a = 0.5, 1; through the origin)", f"{slope:.2f}", f"{SLOPE[0]:g}",
+                       f"{slope - SLOPE[0]:+.2f}", "-"),
+                      (f"{label}high-a exponent (a = 4, 6)", f"{exponent:.2f}", f"{EXPONENT[0]:g}",
+                       f"{exponent - EXPONENT[0]:+.2f}", "-")]
+
+
+def _fit_spread(label, variant, runs, L0, dp, ranks):
+    """Rows of the planar fits over STEP_SEQUENCES: ``runs`` (of the first) and the columns a = 0.5,
+    1, 4 and 6 with ``variant`` for each other number of frames; the mean slope and exponent asserted
+    with issue 14's tolerances, beside their spread (standard deviation, least and greatest)."""
+    fits = []
+    for frames in STEP_SEQUENCES:
+        members = runs if frames == STEP_SEQUENCES[0] else [
+            _collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=variant, frames=frames)
+            for a in (0.5, 1.0, 4.0, 6.0)]
+        fits.append(_slope_and_exponent(np.array([r["a"] for r in members]), np.array([r["ratio"] for r in members])))
+    rows = []
+    frames = ", ".join(f"{n}" for n in STEP_SEQUENCES)
+    for name, values, (ref, tolerance) in (("low-a slope", [f[0] for f in fits], SLOPE),
+                                           ("high-a exponent", [f[1] for f in fits], EXPONENT)):
+        mean = float(np.mean(values))
+        rows.append((f"{label}{name}, mean over {len(values)} step sequences (frames: {frames}); sd, least, greatest",
+                     f"{mean:.2f}; {np.std(values, ddof=1):.2f}, {min(values):.2f}, {max(values):.2f}", f"{ref:g}",
+                     f"{mean - ref:+.2f}", f"{tolerance:g}", abs(mean - ref) <= tolerance))
+    return rows
 
 
 LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 40, 2.75: 44}  # H_0 / dp of each column: a whole number of layers

@@ -245,7 +245,7 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, w
     ``pair_pressure`` False leaves the pressure out (to the isotropic pressure), ``viscous_factor`` 0
     the viscous part (to the corrected stress, or the implicit kick). The viscous pair force is
     eta_ij (radial (v_ij . e) e + along v_ij) m_j W' / (r rho_i rho_j), e = r_ij / r, eta_ij the pair
-    viscosity times ``viscous_factor`` (``PairViscosity``)."""
+    viscosity (mu_i_law.pair_viscosity) times ``viscous_factor`` (``pair_term_factors``)."""
     dim = xc.shape[1]
     for i in range(n):
         if kind[i] != MOVING:
