@@ -1,0 +1,46 @@
+"""scripts/validate.py's planar fits: the low-a slope and high-a exponent of Lube's laws, and their
+means over the step sequences that its assertions take (docs/COLLAPSES.md, 'Round-off and the
+fitted exponent')."""
+
+import numpy as np
+import pytest
+
+from repo_script import load_script
+
+
+@pytest.fixture(scope="module")
+def validate():
+    return load_script("validate")
+
+
+def lube(a, scale=1.0):
+    """Runout ratios on the planar laws: 1.2 a up to a = 1, 1.9 a^(2/3) above (times ``scale``)."""
+    return scale * np.where(a <= 1.0, 1.2 * a, 1.9 * a ** (2 / 3))
+
+
+def test_slope_and_exponent_of_the_laws(validate):
+    a = np.array([0.5, 1.0, 2.0, 4.0, 6.0])
+    slope, exponent = validate._slope_and_exponent(a, lube(a))
+    assert slope == pytest.approx(1.2, rel=1e-12)
+    assert exponent == pytest.approx(2 / 3, rel=1e-12)
+
+
+def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monkeypatch):
+    """Runs whose a = 6 runout is 10 % long in half of the sequences: one sequence's exponent is
+    0.90 (out of 0.67 +- 0.1), the mean over the six 0.78, also out, with its spread; the slope
+    meets 1.2 +- 0.25 in every sequence. The first sequence's runs are the ones passed in."""
+    scale = {17: 1.0, 18: 1.1, 19: 1.0, 21: 1.1, 22: 1.0}
+
+    def collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, frames=20):
+        factor = scale[frames] if a == 6.0 else 1.0
+        return {"a": a, "ratio": float(lube(np.array(a), factor))}
+
+    monkeypatch.setattr(validate, "_collapse", collapse)
+    first = [{"a": a, "ratio": float(lube(np.array(a), 1.1 if a == 6.0 else 1.0))} for a in (0.5, 1.0, 2.0, 4.0, 6.0)]
+    slope_row, exponent_row = validate._fit_spread("X: ", (), first, 0.0972, 0.00486, 1)
+    exponents = [2 / 3 + np.log(s) / np.log(1.5) for s in (1.1, 1.0, 1.1, 1.0, 1.1, 1.0)]
+    assert slope_row[1].startswith("1.20; 0.00") and slope_row[-1]
+    mean = np.mean(exponents)
+    assert exponent_row[1] == (f"{mean:.2f}; {np.std(exponents, ddof=1):.2f}, {min(exponents):.2f}, "
+                               f"{max(exponents):.2f}")
+    assert exponent_row[-1] is False and exponent_row[0].startswith("X: high-a exponent, mean over 6")
