@@ -899,9 +899,9 @@ def inclined_plane_deep(ranks):
 REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
 
 
-def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, frames=20):
+def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_frames=20):
     """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to ``t_end``,
-    by default 6 sqrt(H_0/g) (at least 0.6 s), with ``frames`` frames: its diagnostics, last frame,
+    by default 6 sqrt(H_0/g) (at least 0.6 s), with ``n_frames`` frames: its diagnostics, last frame,
     command, runout ratio, how far from rest it is between its last two frames
     (measure.edge_rest_ratio), and its onset (measure.collapse_onset)."""
     H0 = a * length
@@ -912,10 +912,10 @@ def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, frames
         t_end = default_end
     else:
         name += f"_to{t_end:g}"
-    if frames != 20:
-        name += f"_frames{frames}"
+    if n_frames != 20:
+        name += f"_frames{n_frames}"
     frames, diag, shown = run(name, case, ["--set", *settings, "--t-end", f"{t_end:.3g}", "--output-interval",
-                                           f"{t_end / frames:.3g}"], ranks)
+                                           f"{t_end / n_frames:.3g}"], ranks)
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
@@ -1089,17 +1089,17 @@ def _fit_spread(label, variant, runs, L0, dp, ranks):
     1, 4 and 6 with ``variant`` for each other number of frames; the mean slope and exponent asserted
     with issue 14's tolerances, beside their spread (standard deviation, least and greatest)."""
     fits = []
-    for frames in STEP_SEQUENCES:
-        members = runs if frames == STEP_SEQUENCES[0] else [
-            _collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=variant, frames=frames)
+    for n_frames in STEP_SEQUENCES:
+        members = runs if n_frames == STEP_SEQUENCES[0] else [
+            _collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=variant, n_frames=n_frames)
             for a in (0.5, 1.0, 4.0, 6.0)]
         fits.append(_slope_and_exponent(np.array([r["a"] for r in members]), np.array([r["ratio"] for r in members])))
     rows = []
-    frames = ", ".join(f"{n}" for n in STEP_SEQUENCES)
+    sequences = ", ".join(f"{n}" for n in STEP_SEQUENCES)
     for name, values, (ref, tolerance) in (("low-a slope", [f[0] for f in fits], SLOPE),
                                            ("high-a exponent", [f[1] for f in fits], EXPONENT)):
         mean = float(np.mean(values))
-        rows.append((f"{label}{name}, mean over {len(values)} step sequences (frames: {frames}); sd, least, greatest",
+        rows.append((f"{label}{name}, mean over {len(values)} step sequences (frames: {sequences}); sd, least, greatest",
                      f"{mean:.2f}; {np.std(values, ddof=1):.2f}, {min(values):.2f}, {max(values):.2f}", f"{ref:g}",
                      f"{mean - ref:+.2f}", f"{tolerance:g}", abs(mean - ref) <= tolerance))
     return rows

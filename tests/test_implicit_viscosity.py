@@ -12,7 +12,8 @@ from mpi4py import MPI
 from mpisph.correction import correction_matrix
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL, WALL_SLIP
-from mpisph.physics.implicit_viscosity import TOLERANCE, ImplicitViscosity, viscous_acceleration, viscous_pairs
+from mpisph.physics.implicit_viscosity import (TOLERANCE, ImplicitViscosity, add_along_velocity, viscous_acceleration,
+                                               viscous_pairs)
 from mpisph.physics.mu_i import momentum, pair_term_factors
 from mpisph.physics.mu_i_law import MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT
 from mpisph.physics.viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
@@ -64,8 +65,10 @@ def apply(s, u, mean=MEAN_HARMONIC, deviatoric=False):
     dim = s.x.shape[1]
     _, radial, along = pair_term_factors(dim, deviatoric)
     out = np.zeros((s.n, dim))
-    viscous_acceleration(s.n, s.start, s.nbr, s.x, s.kind, s.normal, pairs(s, mean, deviatoric)[0], radial, along,
-                         u, out)
+    coef = pairs(s, mean, deviatoric)[0]
+    viscous_acceleration(s.n, s.start, s.nbr, s.x, s.kind, s.normal, coef, radial, u, out)
+    if along > 0.0:
+        add_along_velocity(s.n, s.start, s.nbr, s.x, s.kind, s.normal, coef, along, u, out)
     return out
 
 

@@ -31,8 +31,8 @@ def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monk
     meets 1.2 +- 0.25 in every sequence. The first sequence's runs are the ones passed in."""
     scale = {17: 1.0, 18: 1.1, 19: 1.0, 21: 1.1, 22: 1.0}
 
-    def collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, frames=20):
-        factor = scale[frames] if a == 6.0 else 1.0
+    def collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_frames=20):
+        factor = scale[n_frames] if a == 6.0 else 1.0
         return {"a": a, "ratio": float(lube(np.array(a), factor))}
 
     monkeypatch.setattr(validate, "_collapse", collapse)

@@ -104,19 +104,20 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                         block[a, b] -= dt * c * radial * e[a] * e[b]
                 if along > 0.0:
                     c_along = dt * c * along * r * r
-                    for a in range(dim):
-                        if kind[j] == WALL_SLIP:  # the wall's normal only: n n
+                    if kind[j] == WALL_SLIP:  # the wall's normal only: n n
+                        for a in range(dim):
                             for b in range(dim):
                                 block[a, b] -= c_along * normal[j, a] * normal[j, b]
-                        else:
+                    else:
+                        for a in range(dim):
                             block[a, a] -= c_along
         store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
 @njit(cache=True)
-def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, radial, along, u, out):
-    """out_i = a_visc[u]_i of the moving particles from ``viscous_pairs``, a wall partner's u its
-    wall velocity (zero in a search direction)."""
+def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, radial, u, out):
+    """out_i = the radial part of a_visc[u]_i of the moving particles from ``viscous_pairs``, all
+    of Eq. 27's, a wall partner's u its wall velocity (zero in a search direction)."""
     dim = u.shape[1]
     for i in range(n):
         a0 = a1 = a2 = 0.0
@@ -124,29 +125,45 @@ def viscous_acceleration(n, start, nbr, xc, kind, normal, coef, radial, along, u
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
                 e0, e1, e2 = pair_difference(xc, i, j)
-                r2 = e0 * e0 + e1 * e1 + e2 * e2
-                slip = kind[j] == WALL_SLIP
-                if slip:  # off the common path
+                if kind[j] == WALL_SLIP:  # off the common path
                     e0, e1, e2 = along_wall_normal(j, normal, e0, e1, e2)
-                w0, w1, w2 = pair_difference(u, i, j)
-                du = w0 * e0 + w1 * e1
+                du = (u[i, 0] - u[j, 0]) * e0 + (u[i, 1] - u[j, 1]) * e1
                 if dim == 3:
-                    du += w2 * e2
+                    du += (u[i, 2] - u[j, 2]) * e2
                 c = coef[s] * radial * du
                 a0 += c * e0
                 a1 += c * e1
                 a2 += c * e2
-                if along > 0.0:  # r^2 P u_ij, on a free-slip wall P u = (n.u) n
-                    if slip:
-                        w0, w1, w2 = along_wall_normal(j, normal, w0, w1, w2)
-                    c = coef[s] * along * r2
-                    a0 += c * w0
-                    a1 += c * w1
-                    a2 += c * w2
         out[i, 0] = a0
         out[i, 1] = a1
         if dim == 3:
             out[i, 2] = a2
+
+
+@njit(cache=True)
+def add_along_velocity(n, start, nbr, xc, kind, normal, coef, along, u, out):
+    """out_i += the part of a_visc[u]_i along u_ij (the deviatoric pair term's), sum_s coef_s along
+    r_s^2 P_s u_ij, on a free-slip wall P u = (n.u) n; a pass of its own, so that Eq. 27's pairs
+    take ``viscous_acceleration`` alone."""
+    dim = u.shape[1]
+    for i in range(n):
+        if kind[i] != MOVING:
+            continue
+        a0 = a1 = a2 = 0.0
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1, d2 = pair_difference(xc, i, j)
+            w0, w1, w2 = pair_difference(u, i, j)
+            if kind[j] == WALL_SLIP:  # off the common path
+                w0, w1, w2 = along_wall_normal(j, normal, w0, w1, w2)
+            c = coef[s] * along * (d0 * d0 + d1 * d1 + d2 * d2)
+            a0 += c * w0
+            a1 += c * w1
+            a2 += c * w2
+        out[i, 0] += a0
+        out[i, 1] += a1
+        if dim == 3:
+            out[i, 2] += a2
 
 
 @njit(inline="always")
@@ -253,8 +270,9 @@ class PairTerm:
         """out = a_visc[u] of the owned particles, u current on the ghosts."""
         pa = ctx.particles
         s = self.scheme
-        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, s.radial, s.along,
-                             u, out)
+        viscous_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, s.radial, u, out)
+        if s.along > 0.0:
+            add_along_velocity(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.kind, pa.normal, self.coef, s.along, u, out)
 
 
 class CorrectedStress:
