@@ -919,8 +919,23 @@ def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_fram
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
-    return {"a": a, "H0": H0, "diag": diag, "last": last, "cmd": shown, "ratio": (extent - length) / length,
-            "rest": rest, "t_end": last["t"], "onset": measure.collapse_onset(diag["t"], diag["front"], length)}
+    return {"a": a, "H0": H0, "dp": dp, "length": length, "radial": radial, "diag": diag, "last": last,
+            "cmd": shown, "ratio": (extent - length) / length, "rest": rest, "t_end": last["t"],
+            "onset": measure.collapse_onset(diag["t"], diag["front"], length)}
+
+
+def _centre(r):
+    """The deposit's top within 0.3 of the column's length (radius) from its back wall (axis), over
+    H_0: 1 where the top stays undisturbed (scripts/collapse_deposit.py's centre)."""
+    x = r["last"]["x"]
+    reach = {"x": np.column_stack([measure.outward_distance(x, r["radial"]), x[:, -1]])}
+    return measure.deposit_height(reach, r["dp"], 0.3 * r["length"]) / r["H0"]
+
+
+def _farthest(r):
+    """The farthest grain's edge beyond the column, over its length (radius)."""
+    distance = measure.outward_distance(r["last"]["x"], r["radial"])
+    return (distance.max() + 0.5 * r["dp"] - r["length"]) / r["length"]
 
 
 def _front_panel(ax, runs, length, symbol):
@@ -1106,6 +1121,7 @@ def _fit_spread(label, variant, runs, L0, dp, ranks):
 
 
 LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 40, 2.75: 44}  # H_0 / dp of each column: a whole number of layers
+LUBE_UNDISTURBED_3D = 0.74  # Lube et al. 2004: below this a the column's top stays undisturbed
 STUDY_3D = (0.55, (8, 11, 14))  # the resolution study: a, and the coarser columns' layers (the finest is LAYERS_3D's)
 
 
@@ -1153,6 +1169,13 @@ def lube_collapse_3d(ranks):
     ax[2].legend(fontsize=7)
     at = ", ".join(f"{1 / h:.3g}" for h in spacing)
     last_step = f"({1 / spacing[-2]:.3g} -> {1 / spacing[-1]:.3g})"
+    centres = [_centre(r) for r in runs]
+    undisturbed = [(r["a"], c) for r, c in zip(runs, centres) if r["a"] < LUBE_UNDISTURBED_3D]
+    aspects = ", ".join(f"{r['a']:g}" for r in runs)
+    rows.append((f"the deposit's top within 0.3 r_0 of the axis, over H_0, at a = {aspects}",
+                 " / ".join(f"{c:.2f}" for c in centres),
+                 f"1 below a = {LUBE_UNDISTURBED_3D:g}",
+                 "; ".join(f"{100 * (c - 1):+.0f}% at a = {a:g}" for a, c in undisturbed), "-"))
     rows += [(f"a = {a_study:g}: runout ratio at r_0 / dp = {at}", " / ".join(f"{x:.3f}" for x in ratios), "converged",
               f"{100 * change:+.1f}% {last_step}", "5%", abs(change) <= 0.05),
              (f"a = {a_study:g}: the grains' front + dp / 2 (measure.front_position), over r_0, at r_0 / dp = {at}",
@@ -1178,12 +1201,12 @@ def lube_collapse_3d(ranks):
             "grow likewise, by 11-18 % from L_0 / dp = 20 to 40: docs/COLLAPSES.md). The slab row runs "
             "lube_collapse_2d's planar column with the 3D code "
             "(`--set shape=slab`, 8 particles across, periodic, m_0 = 1.4 s as the 3D default; the 2D run "
-            "has its own default, 1.2 s) beside the 2D run: one empty bin near the slab's tip cuts two bins "
-            "off its connected deposit, whose farthest grain lies at 0.53 L_0 beyond the column, as far as "
-            "the 2D deposit's edge. Open gaps of issue 14: the runouts are not converged (above); the "
-            "deposits' edges creep as in the planar runs (the rest rows); the centre of the a = 0.55 "
-            "deposit sinks to 0.84 H_0, of the a = 0.9 one to 0.63 H_0, where Lube's top stays undisturbed "
-            "below a = 0.74 (scripts/collapse_deposit.py prints them).")
+            f"has its own default, 1.2 s) beside the 2D run: the slab's farthest grain lies {_farthest(slab):.2f} "
+            f"L_0 beyond the column, {measure.beyond_the_edge(slab['last'], slab['dp']).sum()} of its grains "
+            f"beyond its connected deposit's edge (the 2D run's farthest: {_farthest(planar):.2f} L_0). Open gaps "
+            "of issue 14: the runouts are not converged (above); the deposits' edges creep as in the planar "
+            "runs (the rest rows); the deposits' centres sink (the row of tops), where Lube's top stays "
+            f"undisturbed below a = {LUBE_UNDISTURBED_3D:g}.")
     return "Axisymmetric collapses of sand columns in 3D, mu(I) (004_ Sec. 5.2, Lube et al. 2004)", runs[0]["cmd"], \
         rows, image, note
 

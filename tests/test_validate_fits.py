@@ -44,3 +44,19 @@ def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monk
     assert exponent_row[1] == (f"{mean:.2f}; {np.std(exponents, ddof=1):.2f}, {min(exponents):.2f}, "
                                f"{max(exponents):.2f}")
     assert exponent_row[-1] is False and exponent_row[0].startswith("X: high-a exponent, mean over 6")
+
+
+def test_centre_and_farthest_grain_of_a_deposit(validate):
+    """A hand-built axisymmetric deposit: a column of radius 0.1 m and height 0.05 m whose grains
+    within 0.03 m of the axis top out at 0.04 m (the top sunk to 0.8 H_0 once the grain's dp/2 is
+    added, dp = 0.01 m) and whose farthest grain sits at 0.195 m from the axis."""
+    dp = 0.01
+    x = np.array([[0.0, 0.0, 0.035], [0.02, 0.0, 0.005], [0.0, 0.025, 0.015],  # within 0.3 r_0 of the axis
+                  [0.05, 0.0, 0.075],  # higher, but 0.05 m out
+                  [0.0, -0.195, 0.005]])  # the farthest grain
+    r = {"last": {"x": x}, "radial": True, "dp": dp, "length": 0.1, "H0": 0.05}
+    assert validate._centre(r) == pytest.approx(0.8, rel=1e-12)
+    assert validate._farthest(r) == pytest.approx(1.0, rel=1e-12)
+    planar = {**r, "radial": False}  # along x only: the grain at y = 0.025 counts, the one at x = 0.05 does not
+    assert validate._centre(planar) == pytest.approx(0.8, rel=1e-12)
+    assert validate._farthest(planar) == pytest.approx((0.05 + 0.005 - 0.1) / 0.1, rel=1e-12)
