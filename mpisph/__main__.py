@@ -74,7 +74,8 @@ def cmd_info(name):
 
 def cmd_report(paths):
     """Tensile-instability measure of each frame (see mpisph.instability); for a solid or a soil,
-    also the paired share against the first frame of its run's directory (mpisph.pairing)."""
+    also the paired share against the first frame of its run's directory (mpisph.pairing); a run
+    restarted into a directory of its own has no frame from t = 0 there, and the line says since when."""
     from pathlib import Path
 
     from . import pairing
@@ -96,7 +97,9 @@ def cmd_report(paths):
             run = str(Path(path).parent)
             if run not in firsts:
                 firsts[run] = read_frame(list_frames(run)[0])
-            paired = f" ({100 * pairing.paired_share(frame, firsts[run]):.3f}% paired)"
+            first = firsts[run]
+            since = f" since its first frame here, t = {first['t']:.6g} s" if first["t"] > 0 else ""
+            paired = f" ({100 * pairing.paired_share(frame, first):.3f}% paired{since})"
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%{paired}, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
               f"closest pair {m['min_spacing']:.3f} dp, {m['fragments']} fragment{'s' * (m['fragments'] > 1)} "
