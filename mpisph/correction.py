@@ -2,8 +2,10 @@
 
     B_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1
 
-It corrects the velocity gradient of solids (000_ Eq. 23) and gives the
-free-surface normal of the unified transport-velocity shift (000_ Eq. 35).
+It corrects the velocity gradient of the Riemann solids (000_ Eq. 23) and
+mu(I)'s strain rate and corrected viscous stress, gives the free-surface normal
+of the unified transport-velocity shift (000_ Eq. 35), and corrects the
+gradients by which particle shifting carries fields to a shifted place.
 The inverse is regularised where the neighbourhood is degenerate (a free
 corner, a splashed particle): with A = -sum_j V_j r_ij (x) grad W,
 B = (adj A + w I) / (det A + w), w = max(0, a_min - det A), which is A^-1

@@ -4,8 +4,9 @@ A force term adds its acceleration dv/dt into an (n_owned, dim) array, for the
 moving particles only. The acceleration is summed in this order:
 
 1. ``Gravity`` (Case.gravity);
-2. the scheme's terms (fluid: viscosity, then the Riemann pressure; solids: the
-   Riemann stress);
+2. the scheme's terms (the fluid: viscosity, then the Riemann pressure; the
+   Riemann solids: the Riemann stress; the classic schemes: their stress with
+   artificial viscosity; mu(I): its momentum);
 3. the stabilisers' terms (artificial stress);
 4. the case's own terms (``Case.forces``);
 
