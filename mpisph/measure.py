@@ -181,10 +181,11 @@ def collapse_onset(t, front, length, fraction=0.05):
     return float(np.asarray(t)[np.argmax(moved)]) if moved.any() else float("nan")
 
 
-def deposit_height(frame, dp, x_max):
-    """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x < x_max."""
+def deposit_height(frame, dp, x_max, radial=False):
+    """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x
+    (``radial``: the distance from the z axis) below ``x_max``."""
     x = frame["x"]
-    return float(x[x[:, 0] < x_max, -1].max() + 0.5 * dp)
+    return float(x[outward_distance(x, radial) < x_max, -1].max() + 0.5 * dp)
 
 
 def thrust_ratio(frame):

@@ -73,7 +73,6 @@ def deposit(run, at=None):
     length = float(p["r_0"] if radial else p["L_0"])
     x = last["x"]
     distance = measure.outward_distance(x, radial)
-    height = x[:, -1]
     top0 = first["x"][:, -1].max() + 0.5 * dp
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     beyond = measure.beyond_the_edge(last, dp, radial=radial)
@@ -81,7 +80,7 @@ def deposit(run, at=None):
     surface = surface_at(last, dp, radial, length, STATIONS)
     return {"a": a, "radial": radial, "resolution": length / dp, "layers": int(round(top0 / dp)),
             "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
-            "centre": (height[distance < 0.3 * length].max() + 0.5 * dp) / top0, "surface": surface,
+            "centre": measure.deposit_height(last, dp, 0.3 * length, radial=radial) / top0, "surface": surface,
             "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
             "onset": measure.collapse_onset(diag["t"], diag["front"], length),
             "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length,

@@ -927,9 +927,7 @@ def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_fram
 def _centre(r):
     """The deposit's top within 0.3 of the column's length (radius) from its back wall (axis), over
     H_0: 1 where the top stays undisturbed (scripts/collapse_deposit.py's centre)."""
-    x = r["last"]["x"]
-    reach = {"x": np.column_stack([measure.outward_distance(x, r["radial"]), x[:, -1]])}
-    return measure.deposit_height(reach, r["dp"], 0.3 * r["length"]) / r["H0"]
+    return measure.deposit_height(r["last"], r["dp"], 0.3 * r["length"], radial=r["radial"]) / r["H0"]
 
 
 def _farthest(r):
