@@ -102,13 +102,20 @@ def fitted_deformation(frame, first, rows):
     return np.linalg.solve(XX, XY).transpose(0, 2, 1)
 
 
-def affine_ratio(frame, first, i, j):
-    """(ratio, |X_0|) of each pair (``i``, ``j``) of moving particles of ``frame``: its distance over
-    |F X_0|, X_0 its separation in ``first`` and F the mean of the pair's ``fitted_deformation``.
-    Near 1: the pair is as close as the flow around it made it; below 1/2: paired."""
-    ends, which = np.unique(np.concatenate([i, j]), return_inverse=True)  # each particle fitted once
+def pair_deformations(frame, first, i, j):
+    """The ``fitted_deformation`` of each end of the pairs (``i``, ``j``): (F_i, F_j), each particle fitted once."""
+    ends, which = np.unique(np.concatenate([i, j]), return_inverse=True)
     F = fitted_deformation(frame, first, ends)[which]
-    F = 0.5 * (F[:len(i)] + F[len(i):])
+    return F[:len(i)], F[len(i):]
+
+
+def affine_ratio(frame, first, i, j, deformations=None):
+    """(ratio, |X_0|) of each pair (``i``, ``j``) of moving particles of ``frame``: its distance over
+    |F X_0|, X_0 its separation in ``first`` and F the mean of the pair's ``fitted_deformation``
+    (``deformations``: ``pair_deformations``' result, if at hand). Near 1: the pair is as close as the
+    flow around it made it; below 1/2: paired."""
+    F_i, F_j = pair_deformations(frame, first, i, j) if deformations is None else deformations
+    F = 0.5 * (F_i + F_j)
     i0, j0 = (_rows_of(frame["gid"][k], first["gid"]) for k in (i, j))
     separation = first["x"][j0] - first["x"][i0]
     image = np.einsum("kab,kb->ka", F, separation)

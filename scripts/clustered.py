@@ -103,8 +103,9 @@ def describe(path):
     if Path(first).resolve() != Path(path).resolve():
         first = read_frame(first, walls=True)
         i, j = pairing.clustered_pairs(frame)  # moving partners only: a wall has no deformation
-        ratio, separation = pairing.affine_ratio(frame, first, i, j)
-        stretch = np.linalg.svd(pairing.fitted_deformation(frame, first, i), compute_uv=False)
+        deformations = pairing.pair_deformations(frame, first, i, j)
+        ratio, separation = pairing.affine_ratio(frame, first, i, j, deformations)
+        stretch = np.linalg.svd(deformations[0], compute_uv=False)
         print(f"  first-frame distance: median {np.median(separation) / dp:.2f} dp; the fitted deformation's principal "
               f"stretches: median smallest {np.median(stretch[:, -1]):.2f}, largest {np.median(stretch[:, 0]):.2f}, "
               f"product {np.median(np.prod(stretch, axis=1)):.2f}")
