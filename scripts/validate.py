@@ -1120,7 +1120,8 @@ def _fit_spread(label, variant, runs, L0, dp, ranks):
 
 LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 40, 2.75: 44}  # H_0 / dp of each column: a whole number of layers
 LUBE_UNDISTURBED_3D = 0.74  # Lube et al. 2004: below this a the column's top stays undisturbed
-STUDY_3D = (0.55, (8, 11, 14, 16, 20, 24))  # the resolution study: a, and its columns' layers (16: LAYERS_3D's run; 24: 004_'s dp)
+# the resolution study: a, and its columns' layers (16: LAYERS_3D's run; 24: 004_'s dp)
+STUDY_3D = (0.55, (8, 11, 14, 16, 20, 24))
 
 
 def lube_collapse_3d(ranks):
