@@ -181,6 +181,11 @@ def collapse_onset(t, front, length, fraction=0.05):
     return float(np.asarray(t)[np.argmax(moved)]) if moved.any() else float("nan")
 
 
+def farthest_edge(frame, dp, radial=False):
+    """The farthest grain's outer edge (+ dp/2) from the back wall (x) or, ``radial``, the z axis."""
+    return float(outward_distance(frame["x"], radial).max() + 0.5 * dp)
+
+
 def deposit_height(frame, dp, x_max, radial=False):
     """Highest free surface (top particle + dp/2, height the last coordinate) among particles with x
     (``radial``: the distance from the z axis) below ``x_max``."""

@@ -71,8 +71,6 @@ def deposit(run, at=None):
     dp, a = float(p["dp"]), float(p["a"])
     radial = p["case"] == "lube_collapse_3d"
     length = float(p["r_0"] if radial else p["L_0"])
-    x = last["x"]
-    distance = measure.outward_distance(x, radial)
     top0 = first["x"][:, -1].max() + 0.5 * dp
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     beyond = measure.beyond_the_edge(last, dp, radial=radial)
@@ -83,7 +81,7 @@ def deposit(run, at=None):
             "centre": measure.deposit_height(last, dp, 0.3 * length, radial=radial) / top0, "surface": surface,
             "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
             "onset": measure.collapse_onset(diag["t"], diag["front"], length),
-            "beyond": int(beyond.sum()), "farthest": (distance.max() + 0.5 * dp - length) / length,
+            "beyond": int(beyond.sum()), "farthest": measure.farthest_edge(last, dp, radial) / length - 1.0,
             "extents": [(measure.mass_extent(last, q, radial=radial) - length) / length for q in FRACTIONS],
             "frame": last, "dp": dp, "length": length}
 

@@ -932,8 +932,7 @@ def _centre(r):
 
 def _farthest(r):
     """The farthest grain's edge beyond the column, over its length (radius)."""
-    distance = measure.outward_distance(r["last"]["x"], r["radial"])
-    return (distance.max() + 0.5 * r["dp"] - r["length"]) / r["length"]
+    return measure.farthest_edge(r["last"], r["dp"], r["radial"]) / r["length"] - 1.0
 
 
 def _front_panel(ax, runs, length, symbol):
@@ -1151,7 +1150,8 @@ def lube_collapse_3d(ranks):
     for (a, n), r in zip(LAYERS_3D.items(), runs):
         ref = float(references.axisymmetric_runout(a))
         error = r["ratio"] / ref - 1
-        short += [f"a = {a:g} ({100 * error:+.1f}%)"] if abs(error) > 0.15 else []
+        if abs(error) > 0.15:
+            short.append(f"a = {a:g} ({100 * error:+.1f}%)")
         rows += [(f"a = {a:g}, r_0 / dp = {n / a:.3g}: (r_inf - r_0) / r_0", f"{r['ratio']:.3f}", f"{ref:.2f}",
                   f"{100 * error:+.1f}%", "15%", abs(error) <= 0.15),
                  _rest_row(r, "the connected deposit's edge, per sector")]
