@@ -69,8 +69,9 @@ def deposit(run, at=None):
     diag = read_diagnostics(Path(run) / "diagnostics.csv")
     p = last["params"]
     dp, a = float(p["dp"]), float(p["a"])
-    radial = p["case"] == "lube_collapse_3d"
-    length = float(p["r_0"] if radial else p["L_0"])
+    in_3d = p["case"] == "lube_collapse_3d"
+    radial = in_3d and p.get("shape", "cylinder") == "cylinder"  # shape=slab: the planar column in 3D
+    length = float(p["r_0"] if in_3d else p["L_0"])
     top0 = first["x"][:, -1].max() + 0.5 * dp
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     beyond = measure.beyond_the_edge(last, dp, radial=radial)

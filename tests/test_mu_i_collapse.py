@@ -275,3 +275,16 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     rows = {float(line.split()[0]): [float(v) for v in line.split()[1:]] for line in table[1:]}
     assert rows[0.5] == [round(d["surface"][0], 3)] * 2 and rows[1.0] == [round(d["surface"][2], 3)] * 2
     assert list(rows) == [0.25, 0.5, 0.75, 1.0] and d["farthest"] < 0.25  # stations up to the farthest grain
+
+
+def test_the_deposit_script_reads_a_slab_as_planar(tmp_path):
+    """scripts/collapse_deposit.py on lube_collapse_3d with shape=slab (the planar column in 3D, its
+    length r_0): a planar deposit, its runout measured along x as validate.py's slab row takes it."""
+    r = mpisph(["lube_collapse_3d", "--set", "shape=slab", "a=0.5", "dp=0.0108", "width=6", "--t-end", "0.05",
+                "--output-interval", "0.05", "--out", tmp_path, "--quiet"], ranks=1, timeout=600)
+    assert r.returncode == 0, r.stderr
+    d = load_script("collapse_deposit").deposit(tmp_path)
+    assert not d["radial"] and d["length"] == pytest.approx(0.0972)
+    last = read_frame(list_frames(tmp_path)[-1])
+    assert d["ratio"] == pytest.approx((measure.runout(last, 0.0108) - 0.0972) / 0.0972, abs=1e-12)
+    assert d["farthest"] == pytest.approx(measure.farthest_edge(last, 0.0108, False) / 0.0972 - 1.0, abs=1e-12)
