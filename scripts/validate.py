@@ -194,12 +194,14 @@ def elliptical_drop_remedies(ranks, dp=0.01):
 
 
 def taylor_green(ranks):
-    """001_ Sec. 4.1 to t = 5: the limited correction's decay rate within 3 %, the unlimited one's
-    overcorrection, and, not asserted, the limited one from a perfect lattice."""
+    """001_ Sec. 4.1 to t = 5 from a perfect lattice, as issue 13 asks, and from the case's jittered one:
+    the limited correction's decay rate over [0, 5] within 3 %; from the lattice the unlimited one
+    visibly off, its energy decaying more slowly than the analytic once the start is past (the rate
+    over [1, 5] more than 3 % shallower: the overcorrection of 001_ Figs. 1 and 3)."""
     ref = references.taylor_green_energy_rate(100.0)
     rows, curves, cmds = [], [], []
-    runs = [(nx, stabiliser, jitter) for nx in (50, 100) for stabiliser, jitter in
-            (("tvf_limited", None), ("tvf", None), ("tvf_limited", 0.0))]
+    runs = [(nx, stabiliser, jitter) for nx in (50, 100) for jitter in (0.0, None)
+            for stabiliser in ("tvf_limited", "tvf")]
     for nx, stabiliser, jitter in runs:
         sets = [f"nx={nx}", f"stabiliser={stabiliser}", "diagnostics_every=1"]
         sets += [] if jitter is None else [f"jitter={jitter:g}"]
@@ -207,33 +209,42 @@ def taylor_green(ranks):
         _, diag, cmd = run(name, "taylor_green", ["--set", *sets, "--t-end", "5", "--output-interval", "1"], ranks)
         cmds.append(cmd)
         t, ke = diag["t"], diag["kinetic_energy"]
-        rate = measure.decay_rate(t, ke)
+        late = t >= 1.0
+        rate, late_rate = measure.decay_rate(t, ke), measure.decay_rate(t[late], ke[late])
         start = "a perfect lattice" if jitter == 0.0 else "the jittered lattice"
-        checked = stabiliser == "tvf_limited" and jitter is None
+        limited = stabiliser == "tvf_limited"
         rows.append((f"KE decay rate over [0, 5], {nx} x {nx}, {stabiliser}, from {start}", f"{rate:.4f}", f"{ref:.4f}",
-                     f"{100 * (rate / ref - 1):+.1f}%", "3%" if checked else "-",
-                     *((abs(rate / ref - 1) <= 0.03,) if checked else ())))
+                     f"{100 * (rate / ref - 1):+.1f}%", "3%" if limited else "-",
+                     *((abs(rate / ref - 1) <= 0.03,) if limited else ())))
+        off = not limited and jitter == 0.0  # the unlimited one from the issue's lattice
+        rows.append((f"KE decay rate over [1, 5], {nx} x {nx}, {stabiliser}, from {start}", f"{late_rate:.4f}",
+                     f"{ref:.4f}", f"{100 * (late_rate / ref - 1):+.1f}%", "below -3%" if off else "-",
+                     *((late_rate / ref - 1 < -0.03,) if off else ())))
         ratio = ke[-1] / (ke[0] * np.exp(ref * t[-1]))
         rows.append((f"KE(5) / analytic, {nx} x {nx}, {stabiliser}, from {start}", f"{ratio:.3f}", "1", "-", "-"))
         curves.append((f"{nx} x {nx}, {stabiliser}" + (", lattice" if jitter == 0.0 else ""), t, ke / ke[0]))
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
     tt = np.linspace(0, 5, 100)
-    ax.semilogy(tt, np.exp(ref * tt), "k-", label="analytic")
-    for label, t, ke in curves:
-        ax.semilogy(t, ke, "--" if "lattice" in label else "-", label=f"mpisph {label}")
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel("KE / KE0")
-    ax.legend(fontsize=7)
-    note = ("The runs start from the lattice perturbed by a seeded 0.2 dp jitter (`jitter`, the case's "
-            "default), except the two from a perfect lattice, which issue 13 asks for: the symmetric flow "
-            "carries a perfect lattice in lockstep and stretches it at the hyperbolic points by exp(2 pi t), "
-            "1.9 at t = 0.1 and beyond the kernel support by t = 0.2. There the kernel sum, hence density "
-            "and pressure, rises (+10 % at a stretch of 1.9 for h = 1.3 dp) while sum V grad W stays zero by "
-            "symmetry, so no transport-velocity correction acts, and the kinetic energy falls to half the "
-            "analytic value by t = 0.2 (docs/REMEDIES.md has the runs that locate it). At 100 x 100 the "
-            "fitted rate is then within 3 % again, but the energy lost early is not recovered. Without the "
-            "limiter (001_ Eq. 14 alone, `tvf`) the energy ends above the analytic decay: the correction's "
-            "overcorrection at low speed, as in 001_ Fig. 3.")
+    for a, lattice in zip(ax, (True, False)):
+        a.semilogy(tt, np.exp(ref * tt), "k-", label="analytic")
+        for label, t, ke in curves:
+            if ("lattice" in label) == lattice:
+                a.semilogy(t, ke, "--" if "tvf_limited" not in label else "-", label=f"mpisph {label}")
+        a.set_xlabel("t [s]")
+        a.set_ylabel("KE / KE0")
+        a.set_title("from a perfect lattice" if lattice else "from the jittered lattice (0.2 dp)")
+        a.legend(fontsize=7)
+    note = ("Issue 13 asks for the vortex from a regular lattice without jitter, as 001_ Fig. 2 runs it; the "
+            "case's default starts from the lattice perturbed by a seeded 0.2 dp jitter (`jitter`), shown "
+            "beside it. From the perfect lattice the symmetric flow carries the lattice in lockstep and "
+            "stretches it at the hyperbolic points by exp(2 pi t), 1.9 at t = 0.1 and beyond the kernel support "
+            "by t = 0.2. There the kernel sum, hence density and pressure, rises (+10 % at a stretch of 1.9 for "
+            "h = 1.3 dp) while sum V grad W stays zero by symmetry, so no transport-velocity correction acts, "
+            "and the kinetic energy falls to about half the analytic value by t = 0.2 (docs/REMEDIES.md has the "
+            "runs that locate it). That early loss is what puts the rates over [0, 5] from the lattice outside "
+            "3 %; over [1, 5] the limited correction's rate is nearer the analytic one. Without the limiter "
+            "(001_ Eq. 14 alone, `tvf`) the energy decays more slowly than the analytic after the start: the "
+            "correction's overcorrection at low speed, as in 001_ Figs. 1 and 3.")
     return "Taylor-Green vortex (Re = 100, to t = 5)", "; ".join(cmds), rows, save(fig, "taylor_green.png"), note
 
 
