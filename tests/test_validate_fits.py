@@ -60,3 +60,26 @@ def test_centre_and_farthest_grain_of_a_deposit(validate):
     planar = {**r, "radial": False}  # along x only: the grain at y = 0.025 counts, the one at x = 0.05 does not
     assert validate._centre(planar) == pytest.approx(0.8, rel=1e-12)
     assert validate._farthest(planar) == pytest.approx((0.05 + 0.005 - 0.1) / 0.1, rel=1e-12)
+
+
+def test_clustered_particles_that_utvf_leaves_in_place(validate):
+    """A hand-built 2D frame of three clustered pairs (each nearer than dp/2) among spread particles:
+    one pair outermost with div r below 0.6 d (Eq. 37 leaves it), one splashed (Sec. 3.3 leaves it),
+    one near-surface with div r above (Eq. 37 shifts it): six clustered, four left in place."""
+    from mpisph import surface
+    from mpisph.particles import MOVING
+
+    dp = 0.1
+    lattice = np.array([[i * dp, j * dp] for i in range(10) for j in range(10)], float)
+    pairs = np.array([[2.0, 0.0], [2.03, 0.0], [4.0, 0.0], [4.03, 0.0], [6.0, 0.0], [6.03, 0.0]])
+    x = np.concatenate([lattice, pairs])
+    n = len(x)
+    kind = np.full(n, MOVING, np.int8)
+    classes = np.full(n, surface.INNER, np.int8)
+    div_r = np.full(n, 2.0)
+    classes[100:102], div_r[100:102] = surface.SURFACE, 1.0
+    classes[102:104], div_r[102:104] = surface.SPLASHED, 0.5
+    classes[104:106], div_r[104:106] = surface.NEAR_SURFACE, 1.5
+    frame = {"x": x, "kind": kind, "gid": np.arange(n), "mass": np.full(n, dp * dp), "rho": np.ones(n),
+             "surface": classes, "div_r": div_r, "params": {"dp": dp}}
+    assert validate._unshifted_share(frame) == (6, 4)
