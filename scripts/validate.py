@@ -371,6 +371,20 @@ def rotating_patch(ranks):
     return "Rotating square patch (dp = 0.02)", cmd, rows, image, ""
 
 
+def _clustered_panel(fig, ax, frame, title, field="plastic_strain", axes=(0, 1)):
+    """The material particles of ``frame`` coloured by ``field`` (its colours capped at its 99th
+    percentile), the clustered ones red."""
+    moving = frame["kind"] == MOVING
+    x, c = frame["x"][moving], frame[field][moving]
+    sc = ax.scatter(x[:, axes[0]], x[:, axes[1]], c=c, s=0.3, cmap="viridis",
+                    vmax=max(np.percentile(c, 99), c.min() + 1e-12))
+    i, _ = pairing.clustered_pairs(frame)
+    ax.plot(frame["x"][i, axes[0]], frame["x"][i, axes[1]], "r.", ms=1.5)
+    ax.set_aspect("equal")
+    ax.set_title(title, fontsize=7)
+    fig.colorbar(sc, ax=ax, shrink=0.6)
+
+
 def _unshifted_share(frame):
     """(clustered particles, those of them on the free surface that 000_'s UTVF leaves in place:
     splashed, or outermost / near-surface with div r < 0.6 d, Sec. 3.3) of ``frame``."""
@@ -426,14 +440,8 @@ def rotating_patch_remedies(ranks, dp=0.01):
     shown = [("utvf", "single", 2.04), ("tvf", "single", 2.04), ("utvf", "single", 1.08),
              ("shifting", "single", 2.04), ("utvf", "dual", 2.04)]
     for k, (st, stepping, t) in enumerate(shown):
-        frame = at[st, stepping, t][0]
-        a = fig.add_subplot(2, 3, 2 + k)
-        sc = a.scatter(frame["x"][:, 0], frame["x"][:, 1], c=frame["p"], s=0.2)
-        i, _ = pairing.clustered_pairs(frame)
-        a.plot(frame["x"][i, 0], frame["x"][i, 1], "r.", ms=2)
-        a.set_aspect("equal")
-        a.set_title(f"{st}, {stepping}: t omega = {t}, p [Pa]; clustered red", fontsize=9)
-        fig.colorbar(sc, ax=a, shrink=0.7)
+        _clustered_panel(fig, fig.add_subplot(2, 3, 2 + k), at[st, stepping, t][0],
+                         f"{st}, {stepping}: t omega = {t}, p [Pa]; clustered red", field="p")
     clustered, left = _unshifted_share(at["utvf", "single", 2.04][0])
     note = (f"000_ runs the patch with one time step (Eq. 38) and the shift after each, as here; the case's "
             f"default, the dual criteria of 001_, shifts once per advection step (the dashed curve and the last "
@@ -576,7 +584,7 @@ CUT_RUNS = (("none", WENDLAND, 0.3), ("utvf", WENDLAND, 0.3), ("artificial_stres
             ("artificial_stress", WENDLAND, 0.1), ("none", CUBIC, 0.3), ("adaptive_kernel", CUBIC, 0.3))
 
 
-def _cut_run(case, stabiliser, kernel, epsilon, ranks, extra=()):
+def _cut_run(case, stabiliser, kernel, epsilon, ranks):
     """One run of a cut (or the cube) with ``stabiliser`` on ``kernel`` (name, h / dp): the case's own
     settings are not repeated, so that cohesive_failure's runs are read again; its label, first and
     last frames (the last with walls), the last one's tensile-instability measures and the command."""
@@ -587,9 +595,9 @@ def _cut_run(case, stabiliser, kernel, epsilon, ranks, extra=()):
     if stabiliser == "artificial_stress" and epsilon != defaults["artificial_stress_epsilon"]:
         sets.append(f"artificial_stress_epsilon={epsilon:g}")
     name = "_".join([case, *(s.split("=")[1] for s in sets)])
-    _, _, cmd = run(name, case, ["--set", *sets, *extra], ranks)
-    frames = list_frames(RUNS / name)
-    first, last = read_frame(frames[0]), read_frame(frames[-1], walls=True)
+    frames, _, cmd = run(name, case, ["--set", *sets], ranks)
+    last = read_frame(list_frames(RUNS / name)[-1], walls=True)  # run's frames hold no walls
+    first = frames[0]
     label = stabiliser + (f" (epsilon = {epsilon:g})" if stabiliser == "artificial_stress" else "")
     return f"{label}, {kernel[0]} h = {kernel[1]:g} dp", first, last, tensile_instability(last), cmd
 
@@ -602,19 +610,6 @@ def _instability_cells(m):
 def _clean(m):
     """No clustering beyond issue 13's 0.1 %, no inner void, one piece."""
     return bool(m["clustering"] <= 0.001 and m["inner_voids"] == 0.0 and m["fragments"] == 1)
-
-
-def _clustered_panel(fig, ax, frame, title, axes=(0, 1)):
-    """The material particles of ``frame`` coloured by plastic strain, the clustered ones red."""
-    moving = frame["kind"] == MOVING
-    x = frame["x"][moving]
-    sc = ax.scatter(x[:, axes[0]], x[:, axes[1]], c=frame["plastic_strain"][moving], s=0.3, cmap="viridis",
-                    vmax=max(np.percentile(frame["plastic_strain"][moving], 99), 1e-12))
-    i, _ = pairing.clustered_pairs(frame)
-    ax.plot(frame["x"][i, axes[0]], frame["x"][i, axes[1]], "r.", ms=1.5)
-    ax.set_aspect("equal")
-    ax.set_title(title, fontsize=7)
-    fig.colorbar(sc, ax=ax, shrink=0.6)
 
 
 def remedies_cuts(ranks):
@@ -677,7 +672,8 @@ def remedies_cube_3d(ranks):
         rows.append((f"cube_failure_3d, {label}: paired share at 1 s (the clustered that the flow's squeeze "
                      "does not explain, mpisph/pairing.py)", f"{100 * pairing.paired_share(last, first):.3f}%",
                      "0", "-", "-"))
-        _clustered_panel(fig, fig.add_subplot(1, 2, k + 1), last, f"{label}, t = {last['t']:.1f} s (x-z)", (0, 2))
+        _clustered_panel(fig, fig.add_subplot(1, 2, k + 1), last, f"{label}, t = {last['t']:.1f} s (x-z)",
+                         axes=(0, 2))
     note = ("The cube's particles projected on the x-z plane, the clustered ones red. Issue 13 holds the "
             "clustering to 0.1 %. The paired share leaves out the clustered particles that the flow's own "
             "squeeze of the lattice brought that close (docs/REMEDIES.md, 'What the cube's clustering is').")
