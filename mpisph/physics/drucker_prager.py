@@ -113,13 +113,13 @@ def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
     L_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1 over the same (regularised as B): exact on a linear
     stress field; zero for walls. A first pass over i's neighbours sums the nine entries of A (each
     A[a, b] -= f d_a d_b, formed in that order, not symmetrised) and keeps each material neighbour's
-    f and offset; then one pass per stress component sums its three entries of S. Every sum takes
-    its terms in neighbour order, as one pass for all would: the same bits, with three
-    accumulators a pass instead of eighteen, which spill from the registers."""
+    f and offset; then, with L_i from A, one pass per stress component sums its three entries of S
+    into three scalars, which L_i maps to out_i[c]. Every sum takes its terms in neighbour order, as
+    one pass for all would: the same bits, with three accumulators a pass instead of eighteen,
+    which spill from the registers."""
     dim = xc.shape[1]
     A = np.empty((dim, dim))
     L = np.empty((dim, dim))
-    S = np.empty((6, 3))
     most = 0
     for i in range(n):
         most = max(most, start[i + 1] - start[i])
@@ -150,6 +150,10 @@ def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
             jj[m], ff[m] = j, f
             dd[m, 0], dd[m, 1], dd[m, 2] = d0, d1, d2
             m += 1
+        A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a10, a11
+        if dim == 3:
+            A[0, 2], A[1, 2], A[2, 0], A[2, 1], A[2, 2] = a02, a12, a20, a21, a22
+        regularised_inverse(A, L)
         for c in range(6):
             s0 = s1 = s2 = 0.0
             sigma_i = stress[i, c]
@@ -158,15 +162,11 @@ def stress_gradient(n, start, nbr, xc, stress, mass, rho, kind, k, out):
                 s0 += g * dd[q, 0]
                 s1 += g * dd[q, 1]
                 s2 += g * dd[q, 2]
-            S[c, 0], S[c, 1], S[c, 2] = s0, s1, s2
-        A[0, 0], A[0, 1], A[1, 0], A[1, 1] = a00, a01, a10, a11
-        if dim == 3:
-            A[0, 2], A[1, 2], A[2, 0], A[2, 1], A[2, 2] = a02, a12, a20, a21, a22
-        regularised_inverse(A, L)
-        for c in range(6):
             for a in range(dim):
-                for b in range(dim):
-                    out[i, c, a] += L[a, b] * S[c, b]
+                out[i, c, a] += L[a, 0] * s0
+                out[i, c, a] += L[a, 1] * s1
+                if dim == 3:
+                    out[i, c, a] += L[a, 2] * s2
 
 
 @njit(cache=True)
