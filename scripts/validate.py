@@ -1332,7 +1332,9 @@ def _fit_spread(label, variant, runs, L0, dp, ranks):
     return rows
 
 
-LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 40, 2.75: 44}  # H_0 / dp of each column: a whole number of layers
+# H_0 / dp of each column, a whole number of layers: r_0 / dp = 29.1, 30, 30 and 16 (a = 2.75 at 30 would
+# be 82 layers, about 12 times the 44 layers' run)
+LAYERS_3D = {0.55: 16, 0.9: 27, 1.6: 48, 2.75: 44}
 LUBE_UNDISTURBED_3D = 0.74  # Lube et al. 2004: below this a the column's top stays undisturbed
 # the resolution study: a, and its columns' layers (16: LAYERS_3D's run; 24: 004_'s dp)
 STUDY_3D = (0.55, (8, 11, 14, 16, 20, 24))
