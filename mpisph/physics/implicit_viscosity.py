@@ -57,7 +57,7 @@ from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
-from ..tensors import set_identity, store_scaled_inverse
+from ..tensors import store_scaled_inverse
 from .mu_i_law import pair_viscosity
 from .viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
 from .walls import along_wall_normal, morris_beta
@@ -75,14 +75,14 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
     wall partner walls.along_wall_normal, where P_s projects on the wall's normal, the identity
     elsewhere; coef_s <= 0, beta of Eq. 36 included for wall partners), and the preconditioner:
     inverse_i, the inverse of the diagonal block m_i (I - dt d a_visc_i / d u_i) of the moving
-    particles (identity elsewhere).
+    particles (identity elsewhere), its entries summed in scalars, not in a scratch matrix.
     Only coef is stored: the passes recompute e_s from the positions, at about the speed of
     reading three stored numbers a pair and without their 24 bytes a pair (docs/PERFORMANCE.md)."""
     dim = xc.shape[1]
-    block = np.zeros((dim, dim))
+    block = np.empty((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        set_identity(block)
+        b00, b01, b02, b10, b11, b12, b20, b21, b22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
         if kind[i] == MOVING:
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
@@ -98,19 +98,37 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                     eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
                     c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
                 coef[s] = c
-                e = (d0, d1, d2)
-                for a in range(dim):
-                    for b in range(dim):
-                        block[a, b] -= dt * c * radial * e[a] * e[b]
+                w = dt * c * radial
+                b00 -= w * d0 * d0
+                b01 -= w * d0 * d1
+                b02 -= w * d0 * d2
+                b10 -= w * d1 * d0
+                b11 -= w * d1 * d1
+                b12 -= w * d1 * d2
+                b20 -= w * d2 * d0
+                b21 -= w * d2 * d1
+                b22 -= w * d2 * d2
                 if along > 0.0:
                     c_along = dt * c * along * r * r
                     if kind[j] == WALL_SLIP:  # the wall's normal only: n n
-                        for a in range(dim):
-                            for b in range(dim):
-                                block[a, b] -= c_along * normal[j, a] * normal[j, b]
+                        n0, n1 = normal[j, 0], normal[j, 1]
+                        n2 = normal[j, 2] if dim == 3 else 0.0
+                        b00 -= c_along * n0 * n0
+                        b01 -= c_along * n0 * n1
+                        b02 -= c_along * n0 * n2
+                        b10 -= c_along * n1 * n0
+                        b11 -= c_along * n1 * n1
+                        b12 -= c_along * n1 * n2
+                        b20 -= c_along * n2 * n0
+                        b21 -= c_along * n2 * n1
+                        b22 -= c_along * n2 * n2
                     else:
-                        for a in range(dim):
-                            block[a, a] -= c_along
+                        b00 -= c_along
+                        b11 -= c_along
+                        b22 -= c_along
+        block[0, 0], block[0, 1], block[1, 0], block[1, 1] = b00, b01, b10, b11
+        if dim == 3:
+            block[0, 2], block[1, 2], block[2, 0], block[2, 1], block[2, 2] = b02, b12, b20, b21, b22
         store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
