@@ -3,11 +3,12 @@
 Dual criteria (001_ Eqs. 9-11): the neighbour configuration is rebuilt once
 per advection step dt_ad = 0.25 h / |v|_ad, |v|_ad = max(|v|max, nu/h, U_ref),
 and the time step within it is dt_ac = CFL h / (c0 + |v|max) with the scheme's
-CFL number (0.6 for fluids, 001_ Eq. 11; 0.4 for solids). With a single
-criterion the configuration is rebuilt every step of dt = 0.4 h / (c0 + |v|max)
-(000_ Eq. 38). A scheme's own limit (``Scheme.time_step_limit``: a viscous or
-force criterion) bounds the time step; with dual criteria the configuration
-is still kept for an advection step, over several of the smaller time steps.
+CFL number (0.6 for fluids, 001_ Eq. 11; 0.4 for solids; 0.5 for mu(I), 004_
+Eq. 39). With a single criterion the configuration is rebuilt every step of
+dt = 0.4 h / (c0 + |v|max) (000_ Eq. 38), whatever the scheme. A scheme's own
+limit (``Scheme.time_step_limit``: a viscous or force criterion) bounds the
+time step; with dual criteria the configuration is still kept for an advection
+step, over several of the smaller time steps.
 The run parameter ``max_time_step`` (when positive) bounds the time step too,
 for a run at a paper's fixed step below the CFL limit.
 

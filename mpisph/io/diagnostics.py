@@ -1,5 +1,6 @@
-"""Per-step global diagnostics in ``<out_dir>/diagnostics.csv`` (and the gauges' CSV files,
-gauges.py, written the same way).
+"""Global diagnostics in ``<out_dir>/diagnostics.csv``, a row every ``diagnostics_every``
+advection steps and at each frame (and the gauges' CSV files, gauges.py, written the same
+way).
 
 Only rank 0 touches the file; the values passed to :meth:`Diagnostics.record`
 are already global.  Floats are written with 17 significant digits, so they

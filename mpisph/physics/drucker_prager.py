@@ -314,7 +314,7 @@ def geostatic_stress(x, top, soil, g, k_lateral=None, profile="geostatic", base=
 class RiemannGranular(SolidScheme):
     """Drucker-Prager soil: the limiter eta = 20 d on separating pairs, Eq. 16 continuity, Eq. 25
     as printed (solid.py says why). Options ``limiter``: the pairs the limiter damps,
-    ``separating`` or ``approaching``; ``stress_diffusion``: ``linear`` (module docstring),
+    ``separating``, ``approaching`` or ``none``; ``stress_diffusion``: ``linear`` (module docstring),
     ``geostatic`` (Feng et al., as 000_) or ``none``."""
 
     name = "riemann_granular"

@@ -241,7 +241,7 @@ class RiemannFluid(Scheme):
     Per configuration: the optional density reinitialisation (001_ Eq. 8) and
     the pressure from it; per step: the pressure from the density (the state),
     and continuity (the rate). Option ``limiter``: the pairs the limiter damps,
-    ``separating`` (the module docstring says why) or ``approaching``.
+    ``separating`` (the module docstring says why), ``approaching`` or ``none``.
     """
 
     name = "riemann_fluid"

@@ -135,9 +135,11 @@ kick do: the wall pushes only along its normal, however irregular its lattice).
 The corrected stress sees a wall partner as a mirror image of particle i
 instead (viscous_stress.py says why).
 
-The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta) with CFL = 0.5: the
-acoustic part through the time-step criteria (``acoustic_cfl``), the viscous
-part as the scheme's ``time_step_limit``, which the implicit viscous kick
+The time step is Eq. 39, CFL min(h/c0, 0.1 rho h^2/eta), 004_'s CFL 0.5. The
+acoustic part comes from the time-step criteria: with the single criterion (the
+mu(I) cases' default) at 000_'s CFL 0.4 (integrators/time_step.py), with dual
+criteria at the scheme's ``acoustic_cfl``, 0.5. The viscous part, at CFL 0.5, is
+the scheme's ``time_step_limit``, which the implicit viscous kick
 (option ``viscous_step``, implicit_viscosity.py) lifts. The viscous limit takes the viscosity
 of the last step's state (at the start of a run, of the initial particles' state), as the
 later steps of a configuration always did: evaluating the state once more per configuration

@@ -9,7 +9,8 @@ where it is compressive, rotated back, R_i = Q R' Q^T. The acceleration
 
 is repulsive for a pair in tension, largest for pairs nearer than dp, and antisymmetric in i
 and j, so it conserves linear momentum. n = 4 and, by default, epsilon = 0.3, as Gray et al. use
-them; a solid case sets epsilon with its parameter ``artificial_stress_epsilon``.
+them; a case sets epsilon with its parameter ``artificial_stress_epsilon`` (case.py's
+ARTIFICIAL_STRESS_PARAMS: every solid case, the dam break, drop, patch and Taylor-Green).
 
 In 2D (plane strain) the principal stresses are those of the in-plane block, as Gray et al.
 have them; in 3D those of the whole tensor, from an eigen-decomposition per particle (beyond
