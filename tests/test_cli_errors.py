@@ -6,13 +6,13 @@ import shutil
 
 import pytest
 
-from mpirun import mpisph
+from mpirun import mpisph, stderr_lines
 
 TINY = ["--set", "dp=0.2", "--t-end", "0.0004", "--output-interval", "0.0002", "--quiet"]
 
 
 def assert_clean_error(result, *fragments):
-    lines = [ln for ln in result.stderr.splitlines() if ln.strip()]
+    lines = stderr_lines(result.stderr)
     assert result.returncode != 0
     assert "Traceback" not in result.stderr
     assert len(lines) == 1, result.stderr

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from mpirun import mpisph
+from mpirun import mpisph, stderr_lines
 from mpisph.errors import InputError
 from mpisph.io.frames import frame_path, write_frame
 from mpisph.plots import deposit_png
@@ -93,7 +93,7 @@ def test_cli_plot(tmp_path):
 def test_cli_plot_errors(tmp_path, args, fragment):
     args = [str(tmp_path) if a == "EMPTY" else a for a in args]
     result = mpisph(args, timeout=120)
-    lines = [ln for ln in result.stderr.splitlines() if ln.strip()]
+    lines = stderr_lines(result.stderr)
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert len(lines) == 1 and lines[0].startswith("mpisph: error: "), result.stderr
     assert fragment in lines[0], lines[0]
