@@ -67,6 +67,15 @@ RELATIVE_TOLERANCE = 1e-8  # of the initial preconditioned residual
 MAX_ITERATIONS = 2000
 
 
+@njit(inline="always")
+def _less_outer(b, w, x0, x1, x2):
+    """The 3 x 3 block b (nine scalars, by rows) less w x (x) x, each entry b_ab - w x_a x_b: kept
+    in registers, where a scratch matrix took a third of ``viscous_pairs``' time."""
+    return (b[0] - w * x0 * x0, b[1] - w * x0 * x1, b[2] - w * x0 * x2,
+            b[3] - w * x1 * x0, b[4] - w * x1 * x1, b[5] - w * x1 * x2,
+            b[6] - w * x2 * x0, b[7] - w * x2 * x1, b[8] - w * x2 * x2)
+
+
 @njit(cache=True)
 def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wall_distance, beta_max, factor,
                   radial, along, mean, k, dt, coef, inverse):
@@ -82,7 +91,7 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
     block = np.empty((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        b00, b01, b02, b10, b11, b12, b20, b21, b22 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
+        b = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the block's rows, 3 x 3 (2 x 2 used in 2D)
         if kind[i] == MOVING:
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
@@ -98,37 +107,17 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                     eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
                     c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
                 coef[s] = c
-                w = dt * c * radial
-                b00 -= w * d0 * d0
-                b01 -= w * d0 * d1
-                b02 -= w * d0 * d2
-                b10 -= w * d1 * d0
-                b11 -= w * d1 * d1
-                b12 -= w * d1 * d2
-                b20 -= w * d2 * d0
-                b21 -= w * d2 * d1
-                b22 -= w * d2 * d2
+                b = _less_outer(b, dt * c * radial, d0, d1, d2)
                 if along > 0.0:
                     c_along = dt * c * along * r * r
                     if kind[j] == WALL_SLIP:  # the wall's normal only: n n
-                        n0, n1 = normal[j, 0], normal[j, 1]
                         n2 = normal[j, 2] if dim == 3 else 0.0
-                        b00 -= c_along * n0 * n0
-                        b01 -= c_along * n0 * n1
-                        b02 -= c_along * n0 * n2
-                        b10 -= c_along * n1 * n0
-                        b11 -= c_along * n1 * n1
-                        b12 -= c_along * n1 * n2
-                        b20 -= c_along * n2 * n0
-                        b21 -= c_along * n2 * n1
-                        b22 -= c_along * n2 * n2
+                        b = _less_outer(b, c_along, normal[j, 0], normal[j, 1], n2)
                     else:
-                        b00 -= c_along
-                        b11 -= c_along
-                        b22 -= c_along
-        block[0, 0], block[0, 1], block[1, 0], block[1, 1] = b00, b01, b10, b11
-        if dim == 3:
-            block[0, 2], block[1, 2], block[2, 0], block[2, 1], block[2, 2] = b02, b12, b20, b21, b22
+                        b = (b[0] - c_along, b[1], b[2], b[3], b[4] - c_along, b[5], b[6], b[7], b[8] - c_along)
+        for a in range(dim):
+            for q in range(dim):
+                block[a, q] = b[3 * a + q]
         store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
