@@ -53,9 +53,9 @@ VPY="$VENV/bin/python"
 BASE_PY="${MPISPH_PYTHON:-python3}"
 
 # Python packages besides mpi4py and h5py (those two are built from source below).
-PY_DEPS=(numpy numba meshio pytest pytest-timeout pytest-mpi matplotlib vtk psutil)
+PY_DEPS=(numpy numba meshio pytest pytest-timeout pytest-mpi pytest-xdist matplotlib vtk psutil)
 # Import names checked to decide whether the venv is complete.
-PY_MODULES=(numpy numba meshio pytest pytest_timeout pytest_mpi matplotlib vtk psutil mpisph)
+PY_MODULES=(numpy numba meshio pytest pytest_timeout pytest_mpi xdist matplotlib vtk psutil mpisph)
 
 # ---------------------------------------------------------------------------
 # 1. Debian packages

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Run mpisph's test suite in two stages with the .venv Python:
-#   (a) serial:  pytest -m "not mpi"                          (timeout 2400 s)
+#   (a) serial:  pytest -m "not mpi", its test files shared among one pytest-xdist
+#                worker per core                               (timeout 2400 s)
 #   (b) MPI:     mpirun -n 2 pytest -m mpi --with-mpi          (timeout 600 s)
 # Extra arguments are passed to both pytest runs. pytest's exit code 5 ("no
 # tests collected") counts as success for a stage, but if no test ran in
@@ -10,8 +11,11 @@
 # MPISPH_TEST_PATHS overrides the test paths (default "tests/"), e.g. to try
 # this script on a scratch directory; MPISPH_SERIAL_TIMEOUT / MPISPH_MPI_TIMEOUT
 # override the stage timeouts (seconds). The timeouts only end a hung run: the serial
-# stage takes about 12 min from a cold numba cache on the usual machine, and
-# twice that on a slow day (2026-11-27: the serial stage passed 1500 s).
+# stage took about 12 min on one core from a cold numba cache on the usual machine,
+# and twice that on a slow day (2026-11-27: it passed 1500 s).
+# MPISPH_TEST_WORKERS sets the serial stage's workers (default: the cores; 0 runs
+# it in one process). A worker takes whole files (--dist loadfile), so a file's
+# module fixtures run once.
 # Set up .venv first with: bash scripts/bootstrap.sh test
 set -euo pipefail
 
@@ -30,6 +34,7 @@ export PYTHONUNBUFFERED=1
 read -r -a TEST_PATHS <<< "${MPISPH_TEST_PATHS:-tests/}"
 SERIAL_TIMEOUT="${MPISPH_SERIAL_TIMEOUT:-2400}"
 MPI_TIMEOUT="${MPISPH_MPI_TIMEOUT:-600}"
+WORKERS="${MPISPH_TEST_WORKERS:-$(nproc)}"
 
 LOGDIR="$(mktemp -d "${TMPDIR:-/tmp}/mpisph-tests.XXXXXX")"
 trap 'rm -rf "$LOGDIR"' EXIT
@@ -75,9 +80,10 @@ record_stage() {
 # ---------------------------------------------------------------------------
 # (a) serial tests
 # ---------------------------------------------------------------------------
-echo "== run_tests: serial tests (-m 'not mpi') =="
+echo "== run_tests: serial tests (-m 'not mpi', $WORKERS workers) =="
 rc=0
-timeout -k 30 "$SERIAL_TIMEOUT" "$VPY" -m pytest -q -m "not mpi" --timeout=900 "${TEST_PATHS[@]}" "$@" \
+timeout -k 30 "$SERIAL_TIMEOUT" "$VPY" -m pytest -q -m "not mpi" -n "$WORKERS" --dist loadfile --timeout=900 \
+    "${TEST_PATHS[@]}" "$@" \
     2>&1 | tee "$LOGDIR/serial.log" || rc=${PIPESTATUS[0]}
 read -r s_passed s_failed < <(pytest_counts "$LOGDIR/serial.log")
 record_stage "serial" "$rc" "$s_passed" "$s_failed" "serial tests timed out after $SERIAL_TIMEOUT s"
