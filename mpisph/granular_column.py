@@ -9,7 +9,8 @@ I_0 = 2.65) with d = 0.32 mm and rho_s0 = 2600 kg/m^3, as in Lube et al.
   c0 = 10 sqrt(g H_0) and K_t = 1 / (rho0 c0^2). (Table 3's printed values
   are 1 / (rho_s0 c0), references.LUBE_TABLE_3.)
 - tau_0 = mu_s phi_max rho_s0 g H_0, the yield stress at the foot of the
-  column, which Table 3's values follow within about 1 %.
+  column, which Table 3's values follow within 1.2 % (6 % in its first row;
+  tests/test_references.py).
 
 The column starts at rest with the hydrostatic pressure of its bulk density at
 rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).

@@ -205,7 +205,7 @@ def inclined_plane_pressure(material, theta_deg, H, g, z):
 # 004_ Table 3: the paper's (2D) runs of Lube's sand columns, r_0 = 9.72 cm, rho_s0 = 2600 kg/m^3,
 # d = 0.32 mm, sand of Table 1's third column. Columns: id: (a, H_0 [m], K_t [1/Pa], tau_0 [Pa], m_0 [s],
 # eta_max [Pa s], N, dp [m], h [m]). K_t as printed equals 1 / (rho_s0 c) with c = 10 sqrt(g H_0) to
-# within 1.5 % (row 6 prints 2.2e-6 where that gives 2.25e-5), which has the units of m^2 s/kg, not
+# within 1.5 % (row 6 prints 2.2e-6 where that gives 2.27e-5), which has the units of m^2 s/kg, not
 # 1/Pa; tau_0 equals mu_s phi_max rho_s0 g H_0 within 1.2 % (6 % in row 1). The cases take K_t from the
 # text instead: Mach 0.1 with U = sqrt(g H_0).
 LUBE_TABLE_3 = {

@@ -90,3 +90,25 @@ def test_uniform_flow_with_an_added_viscosity():
     np.testing.assert_allclose(stress[inner], p[inner] * np.tan(np.radians(theta)), rtol=1e-4)
     slow = references.inclined_plane_mean_velocity_with_viscosity(mat, theta, H, g, nu)
     assert 0.3 < slow / references.inclined_plane_mean_velocity_with_viscosity(mat, theta, H, g, 0.0) < 0.9
+
+
+@pytest.mark.parametrize("row", sorted(references.LUBE_TABLE_3))
+def test_the_sand_columns_take_what_004_table_3_prints(row):
+    """004_ Table 3 (references.LUBE_TABLE_3) against the planar column built at its a and m_0:
+    H_0 = a r_0; tau_0 = mu_s phi_max rho_s0 g H_0 (granular_column's default) within 1.2 % (6 % at
+    a = 0.19); the printed K_t is 1 / (rho_s0 c0), c0 = 10 sqrt(g H_0), within 1.5 % (row 6's 2.2e-6
+    is not: 1 / (rho_s0 c0) is 2.27e-5 there), the column's c0 that of Mach 0.1; eta_max is Eq. 53's
+    at the printed tau_0 and m_0 within 1.5 % (the table's are 0.7-1.2 % higher, for a reason the
+    paper does not give)."""
+    from mpisph.case import build_case, load_case_module, resolve_params
+
+    a, H_0, K_t, tau_0, m_0, eta_max = references.LUBE_TABLE_3[row][:6]
+    module = load_case_module("lube_collapse_2d")
+    p = resolve_params(module, {"a": str(a), "m_0": str(m_0)})
+    material = build_case(module, p).material
+    assert a * references.LUBE_R0 == pytest.approx(H_0, abs=5e-5)
+    assert material.tau_0 == pytest.approx(tau_0, rel=0.06 if row == 1 else 0.012)
+    c0 = 10.0 * np.sqrt(p["g"] * H_0)
+    assert material.c0 == pytest.approx(10.0 * np.sqrt(p["g"] * a * references.LUBE_R0), rel=1e-12)
+    assert (1.0 / (material.rho_s0 * c0) == pytest.approx(K_t, rel=0.015)) == (row != 6)
+    assert material.eta_max(tau_0) == pytest.approx(eta_max, rel=0.015)
