@@ -71,14 +71,6 @@ def adjugate(A, out):
 
 
 @njit(inline="always")
-def set_identity(block):
-    """block = I."""
-    block[:, :] = 0.0
-    for a in range(block.shape[0]):
-        block[a, a] = 1.0
-
-
-@njit(inline="always")
 def store_scaled_inverse(block, scale, adj, out):
     """out = (scale block)^-1 of a 2 x 2 or 3 x 3 block by its adjugate (``adj`` a scratch
     matrix; ``block`` is scaled in place)."""

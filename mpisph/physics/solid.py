@@ -83,7 +83,8 @@ from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component
 from .fluid import continuity, reinitialise_density
-from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
+from .velocity_gradient import gradient_sum
+from .walls import along_wall_normal, wall_relative_velocity
 
 
 STRESS = Field("stress", (6,), np.float64, "Cauchy stress, tension positive, packed (tensors.py) [Pa]")
@@ -96,35 +97,13 @@ def velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distan
     of gradients is ever stored.
 
     B_i is the same for every pair of i, so the sum runs uncorrected,
-    M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij, and L_i = M_i B_i^T; with an empty ``B``
-    (``B.shape[0] == 0``) L_i = M_i, the plain gradient of 002_ Eqs. 26-27. A wall partner's
-    velocity is mirrored (``beta_max <= 0``) or Morris's (walls.py, 002_ Eq. 34, which reads
-    ``wall_distance``).
+    M_i = -sum_j V_j (v_i - v_j) (x) grad_i W_ij (velocity_gradient.gradient_sum, a wall partner at
+    its own density), and L_i = M_i B_i^T; with an empty ``B`` (``B.shape[0] == 0``) L_i = M_i, the
+    plain gradient of 002_ Eqs. 26-27. A wall partner's velocity is mirrored (``beta_max <= 0``) or
+    Morris's (walls.py, 002_ Eq. 34, which reads ``wall_distance``).
     """
     dim = xc.shape[1]
-    m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
-    for s in range(start[i], start[i + 1]):
-        j = nbr[s]
-        d0, d1, d2, r = pair_offset(xc, i, j)
-        u0, u1, u2 = pair_difference(v, i, j)
-        if is_wall(kind[j]):  # walls.py: the wall call stays off the common path
-            if kind[j] == WALL_SLIP:
-                d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
-            if beta_max > 0.0:
-                u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
-            else:
-                u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
-        f = -mass[j] / rho[j] * pair_dw(k, r, i, j) / r
-        m00 += f * u0 * d0
-        m01 += f * u0 * d1
-        m02 += f * u0 * d2
-        m10 += f * u1 * d0
-        m11 += f * u1 * d1
-        m12 += f * u1 * d2
-        m20 += f * u2 * d0
-        m21 += f * u2 * d1
-        m22 += f * u2 * d2
-    M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
+    M = gradient_sum(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, beta_max, False, k)
     L[:, :] = 0.0
     corrected = B.shape[0] > 0
     for a in range(dim):

@@ -44,10 +44,11 @@ import numpy as np
 from numba import njit
 
 from ..kernels import pair_dw
-from ..neighbours import pair_difference, pair_offset
+from ..neighbours import pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
-from ..tensors import component, set_identity, store_scaled_inverse, times_vector
-from .walls import along_wall_normal, morris_relative_velocity, wall_relative_velocity
+from ..tensors import component, store_scaled_inverse, times_vector
+from .velocity_gradient import gradient_sum
+from .walls import along_wall_normal
 
 
 @njit(cache=True)
@@ -58,35 +59,11 @@ def strain_rate(n, start, nbr, xc, v, rho, mass, kind, normal, wall_distance, be
     partner seen as a mirror image (module docstring)."""
     dim = xc.shape[1]
     corrected = B.shape[0] > 0
+    wall_beta_max = 0.0 if corrected else beta_max  # a mirrored wall partner (gradient_sum)
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        m00 = m01 = m02 = m10 = m11 = m12 = m20 = m21 = m22 = 0.0
-        for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1, d2, r = pair_offset(xc, i, j)
-            u0, u1, u2 = pair_difference(v, i, j)
-            rho_j = rho[j]
-            if is_wall(kind[j]):  # off the common path
-                if corrected:
-                    u0, u1, u2 = wall_relative_velocity(i, j, v, kind, normal)
-                else:
-                    u0, u1, u2 = morris_relative_velocity(i, j, xc, v, kind, normal, wall_distance, beta_max)
-                rho_j = rho[i]
-                if kind[j] == WALL_SLIP:
-                    d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
-            f = -mass[j] / rho_j * pair_dw(k, r, i, j) / r
-            m00 += f * u0 * d0
-            m01 += f * u0 * d1
-            m10 += f * u1 * d0
-            m11 += f * u1 * d1
-            if dim == 3:
-                m02 += f * u0 * d2
-                m12 += f * u1 * d2
-                m20 += f * u2 * d0
-                m21 += f * u2 * d1
-                m22 += f * u2 * d2
-        M = ((m00, m01, m02), (m10, m11, m12), (m20, m21, m22))
+        M = gradient_sum(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, wall_beta_max, True, k)
         norm = 0.0
         for a in range(dim):
             for b in range(a, dim):
@@ -182,7 +159,7 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        set_identity(block)
+        b = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the block by rows, the identity's 3 x 3
         if kind[i] == MOVING:
             h0 = h1 = h2 = 0.0
             for s in range(start[i], start[i + 1]):
@@ -197,18 +174,20 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
                 w = mass[j] / rho[j] * f
                 h0, h1, h2 = h0 + w * d0, h1 + w * d1, h2 + w * d2
                 c0, c1, c2 = times_vector(B, j, dim, f * d0, f * d1, f * d2)
-                _add_sym_block(block, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
+                b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
             c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
-            _add_sym_block(block, dt * eta[i] / rho[i], c0, c1, c2)
+            b = _plus_sym(b, dt * eta[i] / rho[i], c0, c1, c2)
+        for a in range(dim):
+            for q in range(dim):
+                block[a, q] = b[3 * a + q]
         store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
 
 
 @njit(inline="always")
-def _add_sym_block(block, w, c0, c1, c2):
-    """block += w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c)."""
-    c = (c0, c1, c2)
+def _plus_sym(b, w, c0, c1, c2):
+    """The 3 x 3 block b (nine scalars, by rows) plus w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c),
+    kept in registers (as implicit_viscosity._less_outer)."""
     cc = c0 * c0 + c1 * c1 + c2 * c2
-    for a in range(block.shape[0]):
-        block[a, a] += w * cc
-        for b in range(block.shape[0]):
-            block[a, b] += w * c[a] * c[b]
+    return (b[0] + w * cc + w * c0 * c0, b[1] + w * c0 * c1, b[2] + w * c0 * c2,
+            b[3] + w * c1 * c0, b[4] + w * cc + w * c1 * c1, b[5] + w * c1 * c2,
+            b[6] + w * c2 * c0, b[7] + w * c2 * c1, b[8] + w * cc + w * c2 * c2)
