@@ -57,7 +57,7 @@ from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
 from ..parallel.exact_sum import global_sums
-from ..tensors import store_scaled_inverse
+from ..tensors import IDENTITY_BLOCK, block_less_outer, block_plus_diagonal, store_scaled_inverse
 from .mu_i_law import pair_viscosity
 from .viscous_stress import strain_rate, stress_blocks, stress_divergence, viscous_force_tensor
 from .walls import along_wall_normal, morris_beta
@@ -65,15 +65,6 @@ from .walls import along_wall_normal, morris_beta
 TOLERANCE = 1e-7  # of the reference speed, RMS over the particles
 RELATIVE_TOLERANCE = 1e-8  # of the initial preconditioned residual
 MAX_ITERATIONS = 2000
-
-
-@njit(inline="always")
-def _less_outer(b, w, x0, x1, x2):
-    """The 3 x 3 block b (nine scalars, by rows) less w x (x) x, each entry b_ab - w x_a x_b: kept
-    in registers, where a scratch matrix took a third of ``viscous_pairs``' time."""
-    return (b[0] - w * x0 * x0, b[1] - w * x0 * x1, b[2] - w * x0 * x2,
-            b[3] - w * x1 * x0, b[4] - w * x1 * x1, b[5] - w * x1 * x2,
-            b[6] - w * x2 * x0, b[7] - w * x2 * x1, b[8] - w * x2 * x2)
 
 
 @njit(cache=True)
@@ -91,7 +82,7 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
     block = np.empty((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        b = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the block's rows, 3 x 3 (2 x 2 used in 2D)
+        b = IDENTITY_BLOCK
         if kind[i] == MOVING:
             for s in range(start[i], start[i + 1]):
                 j = nbr[s]
@@ -107,18 +98,15 @@ def viscous_pairs(n, start, nbr, xc, rho, eta, gamma_dot, mass, kind, normal, wa
                     eta_ij = pair_viscosity(factor, eta[i], eta_j, gamma_dot[i], gamma_dot_j, mean)
                     c = mass[j] * pair_dw(k, r, i, j) / r * eta_ij / (r * r * rho[i] * rho_j) * beta
                 coef[s] = c
-                b = _less_outer(b, dt * c * radial, d0, d1, d2)
+                b = block_less_outer(b, dt * c * radial, d0, d1, d2)
                 if along > 0.0:
                     c_along = dt * c * along * r * r
                     if kind[j] == WALL_SLIP:  # the wall's normal only: n n
                         n2 = normal[j, 2] if dim == 3 else 0.0
-                        b = _less_outer(b, c_along, normal[j, 0], normal[j, 1], n2)
+                        b = block_less_outer(b, c_along, normal[j, 0], normal[j, 1], n2)
                     else:
-                        b = (b[0] - c_along, b[1], b[2], b[3], b[4] - c_along, b[5], b[6], b[7], b[8] - c_along)
-        for a in range(dim):
-            for q in range(dim):
-                block[a, q] = b[3 * a + q]
-        store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
+                        b = block_plus_diagonal(b, -c_along)
+        store_scaled_inverse(b, mass[i] if kind[i] == MOVING else 1.0, block, adj, inverse[i])
 
 
 @njit(cache=True)

@@ -46,7 +46,8 @@ from numba import njit
 from ..kernels import pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
-from ..tensors import component, store_scaled_inverse, times_vector
+from ..tensors import (IDENTITY_BLOCK, block_less_outer, block_plus_diagonal, component, store_scaled_inverse,
+                       times_vector)
 from .velocity_gradient import gradient_sum
 from .walls import along_wall_normal
 
@@ -159,7 +160,7 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
-        b = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the block by rows, the identity's 3 x 3
+        b = IDENTITY_BLOCK
         if kind[i] == MOVING:
             h0 = h1 = h2 = 0.0
             for s in range(start[i], start[i + 1]):
@@ -177,17 +178,10 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
                 b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
             c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
             b = _plus_sym(b, dt * eta[i] / rho[i], c0, c1, c2)
-        for a in range(dim):
-            for q in range(dim):
-                block[a, q] = b[3 * a + q]
-        store_scaled_inverse(block, mass[i] if kind[i] == MOVING else 1.0, adj, inverse[i])
+        store_scaled_inverse(b, mass[i] if kind[i] == MOVING else 1.0, block, adj, inverse[i])
 
 
 @njit(inline="always")
 def _plus_sym(b, w, c0, c1, c2):
-    """The 3 x 3 block b (nine scalars, by rows) plus w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c),
-    kept in registers (as implicit_viscosity._less_outer)."""
-    cc = c0 * c0 + c1 * c1 + c2 * c2
-    return (b[0] + w * cc + w * c0 * c0, b[1] + w * c0 * c1, b[2] + w * c0 * c2,
-            b[3] + w * c1 * c0, b[4] + w * cc + w * c1 * c1, b[5] + w * c1 * c2,
-            b[6] + w * c2 * c0, b[7] + w * c2 * c1, b[8] + w * cc + w * c2 * c2)
+    """The block b (tensors.IDENTITY_BLOCK) plus w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c)."""
+    return block_less_outer(block_plus_diagonal(b, w * (c0 * c0 + c1 * c1 + c2 * c2)), -w, c0, c1, c2)
