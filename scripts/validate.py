@@ -1342,18 +1342,13 @@ STUDY_3D = (0.55, (8, 11, 14, 16, 20, 24))
 
 def lube_collapse_3d(ranks):
     """Axisymmetric mu(I) collapses in 3D (Lube et al. 2004) for 004_'s a = 0.55-2.75 (H_0 / dp of
-    LAYERS_3D), a resolution study of a = 0.55 (H_0 / dp of STUDY_3D) by the connected deposit's edge and
-    by its grains' front, and the planar collapse run by the 3D code as a slab beside the 2D run:
-    runout against Eq. 58, rest."""
+    LAYERS_3D), and the planar collapse run by the 3D code as a slab beside the 2D run: runout against
+    Eq. 58, rest, the deposits' tops. The resolution study is lube_collapse_3d_convergence."""
     r0 = references.LUBE_R0
     runs = [_collapse("lube_collapse_3d", a, r0, a * r0 / n, ranks, radial=True) for a, n in LAYERS_3D.items()]
-    a_study, layers = STUDY_3D
-    done = {LAYERS_3D[a_study]: next(r for r in runs if r["a"] == a_study)}
-    study = [done.get(n) or _collapse("lube_collapse_3d", a_study, r0, a_study * r0 / n, ranks, radial=True)
-             for n in layers]
     slab = _collapse("lube_collapse_3d", 0.5, r0, r0 / 20, ranks, radial=False, variant=("shape=slab",))
     planar = _collapse("lube_collapse_2d", 0.5, r0, r0 / 20, ranks, radial=False)
-    fig, ax = plt.subplots(1, 3, figsize=(16, 4.5))
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.5))
     _front_panel(ax[0], runs, r0, "r")
     finest = ", ".join(f"{n / a:.3g}" for a, n in LAYERS_3D.items())  # r_0 / dp of each column
     aa = np.linspace(0.3, 3.2, 60)
@@ -1372,42 +1367,18 @@ def lube_collapse_3d(ranks):
         rows += [(f"a = {a:g}, r_0 / dp = {n / a:.3g}: (r_inf - r_0) / r_0", f"{r['ratio']:.3f}", f"{ref:.2f}",
                   f"{100 * error:+.1f}%", "15%", abs(error) <= 0.15),
                  _rest_row(r, "the connected deposit's edge, per sector")]
-    spacing = a_study / np.array(layers)  # dp / r_0
-    ratios = np.array([r["ratio"] for r in study])
-    fronts = np.array([(measure.front_position(r["last"], h * r0, radial=True) + 0.5 * h * r0 - r0) / r0
-                       for r, h in zip(study, spacing)])  # the grains' front within the outermost bin, + dp/2
-    changes, front_changes = ratios[1:] / ratios[:-1] - 1, fronts[1:] / fronts[:-1] - 1
-    change, front_change = changes[-1], front_changes[-1]
-    converged = abs(change) <= 0.05
-    ref = float(references.axisymmetric_runout(a_study))
-    ax[2].plot(spacing, ratios, "o-", label=f"mpisph, a = {a_study:g}: connected deposit's edge (bins)")
-    ax[2].plot(spacing, fronts, "s--", label="its grains' front + dp / 2")
-    ax[2].axhline(ref, color="k", ls="--", label="Lube et al. 2004 (Eq. 58)")
-    ax[2].set_xlabel("dp / r_0")
-    ax[2].set_ylabel("(r_inf - r_0) / r_0")
-    ax[2].set_xlim(left=0.0)
-    ax[2].legend(fontsize=7)
-    at = ", ".join(f"{1 / h:.3g}" for h in spacing)
-    last_step = f"({1 / spacing[-2]:.3g} -> {1 / spacing[-1]:.3g})"
     centres = [_centre(r) for r in runs]
     undisturbed = [(r["a"], c) for r, c in zip(runs, centres) if r["a"] < LUBE_UNDISTURBED_3D]
     aspects = ", ".join(f"{r['a']:g}" for r in runs)
-    rows.append((f"the deposit's top within 0.3 r_0 of the axis, over H_0, at a = {aspects}",
-                 " / ".join(f"{c:.2f}" for c in centres),
-                 f"1 below a = {LUBE_UNDISTURBED_3D:g}",
-                 "; ".join(f"{100 * (c - 1):+.0f}% at a = {a:g}" for a, c in undisturbed), "-"))
-    rows += [(f"a = {a_study:g}: runout ratio at r_0 / dp = {at}", " / ".join(f"{x:.3f}" for x in ratios), "converged",
-              f"{100 * change:+.1f}% {last_step}", "5%", converged),
-             (f"a = {a_study:g}: the grains' front + dp / 2 (measure.front_position), over r_0, at r_0 / dp = {at}",
-              " / ".join(f"{x:.3f}" for x in fronts), "converged", f"{100 * front_change:+.1f}% {last_step}", "-"),
+    rows += [(f"the deposit's top within 0.3 r_0 of the axis, over H_0, at a = {aspects}",
+              " / ".join(f"{c:.2f}" for c in centres),
+              f"1 below a = {LUBE_UNDISTURBED_3D:g}",
+              "; ".join(f"{100 * (c - 1):+.0f}% at a = {a:g}" for a, c in undisturbed), "-"),
              ("planar a = 0.5, L_0 / dp = 20: (L_inf - L_0) / L_0 of the 3D slab; of the 2D run",
               f"{slab['ratio']:.2f}; {planar['ratio']:.2f}", "0.60 (1.2 a)",
               f"{100 * (slab['ratio'] / planar['ratio'] - 1):+.0f}% (3D against 2D)", "-")]
     image = save(fig, "lube_collapse_3d.png")
     short_text = f"the runout of {', '.join(short)} misses Lube's law by more than 15 %; " if short else ""
-    unconverged = (" So the runouts of the other rows, each at a single spacing, are likely short of what this "
-                   "model gives at finer spacings (the planar runs grow by 11-18 % from L_0 / dp = 20 to 40: "
-                   "docs/COLLAPSES.md).")
     note = ("A cylinder of radius r_0 = 9.72 cm on a round no-slip floor, the cases' defaults (implicit "
             "viscous kick, secant pair viscosity, m_0 = 1.4 s), to 6 sqrt(H_0 / g); runout: the connected "
             "deposit's edge averaged over 16 azimuthal sectors (measure.radial_runout). Each column is a "
@@ -1416,27 +1387,66 @@ def lube_collapse_3d(ranks):
             f"{finest} for a = {', '.join(f'{a:g}' for a in LAYERS_3D)} (004_ Table 3 ran its 2D "
             "columns at r_0 / dp = 44, 32, 30 and 20; a = 2.75 at 55 layers, 004_'s spacing, would take about "
             "(55 / 44)^4 = 2.4 times as long as 44 layers: particles as the cube of the inverse spacing and "
-            "steps as the inverse spacing). In the study of a = "
-            f"{a_study:g} each refinement moves the runout by "
-            f"{', '.join(f'{100 * c:+.1f}%' for c in changes)} and the grains' front by "
-            f"{', '.join(f'{100 * c:+.1f}%' for c in front_changes)}: the last refinement "
-            f"{'meets' if converged else 'misses'} the row's 5 %. The edge of the "
-            "connected deposit is a bin's outer edge, so it jumps by up to dp / r_0 per sector (0.07 at "
-            "r_0 / dp = 14.5), where the grains' front within the outermost bin "
-            f"{'grows at every refinement' if (front_changes > 0).all() else 'does not grow at every refinement'}"
-            f".{'' if converged else unconverged} The slab row runs "
+            "steps as the inverse spacing). Each runout is one run at one spacing: the next section, "
+            "lube_collapse_3d_convergence, refines a = 0.55. The slab row runs "
             "lube_collapse_2d's planar column with the 3D code "
             "(`--set shape=slab`, 8 particles across, periodic, m_0 = 1.4 s as the 3D default; the 2D run "
             f"has its own default, 1.2 s) beside the 2D run: the slab's farthest grain lies {_farthest(slab):.2f} "
             f"L_0 beyond the column, {measure.beyond_the_edge(slab['last'], slab['dp']).sum()} of its grains "
             f"beyond its connected deposit's edge (the 2D run's farthest: {_farthest(planar):.2f} L_0). Open gaps "
-            f"of issue 14: {'' if converged else 'the runouts are not converged (above); '}"
-            f"{short_text}"
+            f"of issue 14: {short_text}"
             "the deposits' edges creep as in the planar "
             "runs (the rest rows); the deposits' centres sink (the row of tops), where Lube's top stays "
             f"undisturbed below a = {LUBE_UNDISTURBED_3D:g}.")
     return "Axisymmetric collapses of sand columns in 3D, mu(I) (004_ Sec. 5.2, Lube et al. 2004)", runs[0]["cmd"], \
         rows, image, note
+
+
+def lube_collapse_3d_convergence(ranks):
+    """The resolution study of the axisymmetric column a = 0.55 (H_0 / dp of STUDY_3D, the case's
+    defaults as in lube_collapse_3d): its runout by the connected deposit's edge and by its grains'
+    front, converged when the last refinement moves the edge by at most 5 %."""
+    r0 = references.LUBE_R0
+    a_study, layers = STUDY_3D
+    study = [_collapse("lube_collapse_3d", a_study, r0, a_study * r0 / n, ranks, radial=True) for n in layers]
+    spacing = a_study / np.array(layers)  # dp / r_0
+    ratios = np.array([r["ratio"] for r in study])
+    fronts = np.array([(measure.front_position(r["last"], h * r0, radial=True) + 0.5 * h * r0 - r0) / r0
+                       for r, h in zip(study, spacing)])  # the grains' front within the outermost bin, + dp/2
+    changes, front_changes = ratios[1:] / ratios[:-1] - 1, fronts[1:] / fronts[:-1] - 1
+    change, front_change = changes[-1], front_changes[-1]
+    converged = abs(change) <= 0.05
+    ref = float(references.axisymmetric_runout(a_study))
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.plot(spacing, ratios, "o-", label=f"mpisph, a = {a_study:g}: connected deposit's edge (bins)")
+    ax.plot(spacing, fronts, "s--", label="its grains' front + dp / 2")
+    ax.axhline(ref, color="k", ls="--", label="Lube et al. 2004 (Eq. 58)")
+    ax.set_xlabel("dp / r_0")
+    ax.set_ylabel("(r_inf - r_0) / r_0")
+    ax.set_xlim(left=0.0)
+    ax.legend(fontsize=7)
+    image = save(fig, "lube_collapse_3d_convergence.png")
+    at = ", ".join(f"{1 / h:.3g}" for h in spacing)
+    last_step = f"({1 / spacing[-2]:.3g} -> {1 / spacing[-1]:.3g})"
+    rows = [(f"a = {a_study:g}: runout ratio at r_0 / dp = {at}", " / ".join(f"{x:.3f}" for x in ratios),
+             "converged", f"{100 * change:+.1f}% {last_step}", "5%", converged),
+            (f"a = {a_study:g}: the grains' front + dp / 2 (measure.front_position), over r_0, at r_0 / dp = {at}",
+             " / ".join(f"{x:.3f}" for x in fronts), "converged", f"{100 * front_change:+.1f}% {last_step}", "-"),
+            _rest_row(study[-1], f"the connected deposit's edge at r_0 / dp = {1 / spacing[-1]:.3g}")]
+    unconverged = (" So the runouts of lube_collapse_3d, each at a single spacing, are likely short of what "
+                   "this model gives at finer spacings (the planar runs grow by 11-18 % from L_0 / dp = 20 to "
+                   "40: docs/COLLAPSES.md).")
+    note = (f"The column a = {a_study:g} of lube_collapse_3d at {', '.join(str(n) for n in layers)} layers. "
+            f"Each refinement moves the runout by "
+            f"{', '.join(f'{100 * c:+.1f}%' for c in changes)} and the grains' front by "
+            f"{', '.join(f'{100 * c:+.1f}%' for c in front_changes)}: the last refinement "
+            f"{'meets' if converged else 'misses'} the row's 5 %. The edge of the "
+            "connected deposit is a bin's outer edge, so it jumps by up to dp / r_0 per sector "
+            f"({spacing[0]:.2f} at r_0 / dp = {1 / spacing[0]:.3g}), where the grains' front within the outermost bin "
+            f"{'grows at every refinement' if (front_changes > 0).all() else 'does not grow at every refinement'}"
+            f".{'' if converged else unconverged}")
+    return (f"Resolution study of the axisymmetric collapse a = {a_study:g} in 3D, mu(I) (issue 14)",
+            study[-1]["cmd"], rows, image, note)
 
 
 def soil_cylinder(ranks, dp=0.0005):
@@ -1492,7 +1502,8 @@ VALIDATIONS = {"elliptical_drop": elliptical_drop, "elliptical_drop_remedies": e
                "inclined_plane": inclined_plane, "inclined_plane_steady": inclined_plane_steady,
                "inclined_plane_deep": inclined_plane_deep,
                "lube_collapse_2d": lube_collapse_2d,
-               "lube_collapse_3d": lube_collapse_3d}
+               "lube_collapse_3d": lube_collapse_3d,
+               "lube_collapse_3d_convergence": lube_collapse_3d_convergence}
 MARK = "<!-- section: {} -->"
 
 
