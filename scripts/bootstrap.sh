@@ -307,7 +307,7 @@ case "$MODE" in
         case_name="${MPISPH_DEMO_CASE:-column_collapse_2d}"
         out_dir="${MPISPH_DEMO_OUT:-runs/$case_name}"
         case_args=()
-        # coarser than the case's default 0.002: 1250 particles, 1-2 min on 2 ranks;
+        # coarser than the case's default 0.002: 800 particles, about a minute on 2 ranks;
         # extra arguments come later, so `demo --set dp=0.002` still wins
         if [ "$case_name" = column_collapse_2d ]; then
             case_args=(--set dp=0.005)
