@@ -277,6 +277,18 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     assert list(rows) == [0.25, 0.5, 0.75, 1.0] and d["farthest"] < 0.25  # stations up to the farthest grain
 
 
+def test_the_well_posedness_script_reads_the_planar_column(planar):
+    """scripts/well_posedness.py on the coarse planar column: the sand's window (0.432 < I < 1.82),
+    nothing dissipated at rest at t = 0, and at 0.1 s, as the column fails, more than nine tenths of
+    the dissipation at I outside the window, three quarters of it below the window's lower end; over
+    two frames the run's share is the last frame's."""
+    window, rows, overall = load_script("well_posedness").run_table(planar["implicit"])
+    assert window == pytest.approx((0.432, 1.82), rel=2e-3)
+    assert rows[0][1] == 0.0 and math.isnan(rows[0][2])
+    assert rows[-1][1] > 0.0 and rows[-1][2] > 0.9 and rows[-1][3][2] < window[0]
+    assert overall == pytest.approx(rows[-1][2], rel=1e-12)
+
+
 def test_the_deposit_script_reads_a_slab_as_planar(tmp_path):
     """scripts/collapse_deposit.py on lube_collapse_3d with shape=slab (the planar column in 3D, its
     length r_0): a planar deposit, its runout measured along x as validate.py's slab row takes it."""

@@ -161,6 +161,7 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import adjugate, component
+from ..well_posedness import well_posed_window
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
@@ -527,8 +528,12 @@ class MuIScheme(Scheme):
 
     def report(self):
         m = self.material
+        window = well_posed_window(m.params)
+        where = f"only for {window[0]:.3g} < I < {window[1]:.3g}" if window else "at no I"
         return (f"mu(I): sound speed at rest c0 = {m.c0:.4g} m/s; regularised viscosity at tau_y = tau_0 = "
-                f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",)
+                f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",
+                f"mu(I): the friction law is well-posed {where} (Barker et al. 2015, incompressible); a flow "
+                "outside that range need not converge with the resolution (mpisph/well_posedness.py)")
 
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)

@@ -1,0 +1,72 @@
+"""How much of a mu(I) run flows where its friction law is ill-posed (mpisph/well_posedness.py).
+
+    .venv/bin/python scripts/well_posedness.py RUN [RUN ...]
+
+For each run (any mu(I) case: its material is built again from the frames' parameters): the window
+of inertial numbers (I_1, I_2) where the law is well-posed, and for each frame the grains' viscous
+dissipation rate (sum of eta gamma_dot^2 m / rho), the share of it at I outside the window, and the
+inertial numbers below which a quarter, half and three quarters of it happens. The last line weighs
+the frames' shares by their dissipation over the run (trapezoids in time): the share of all the
+energy the run dissipated where the law is ill-posed.
+"""
+
+import argparse
+
+import numpy as np
+
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.well_posedness import ill_posed_dissipation_share, well_posed_window
+
+
+def material_of(frame):
+    """The MuIGranular of the case and parameters a frame was written with."""
+    p = frame["params"]
+    module = load_case_module(p["case"])
+    return build_case(module, resolve_params(module, {k: str(v) for k, v in p.items() if k in module.PARAMS})).material
+
+
+def dissipation(frame):
+    """Each grain's viscous dissipation rate eta gamma_dot^2 m / rho [W]."""
+    return frame["eta"] * frame["gamma_dot"] ** 2 * frame["mass"] / frame["rho"]
+
+
+def weighted_quantiles(values, weights, quantiles):
+    """The values below which the given shares of the weights lie."""
+    order = np.argsort(values)
+    cumulative = np.cumsum(weights[order])
+    return [float(values[order][np.searchsorted(cumulative, q * cumulative[-1])]) for q in quantiles]
+
+
+def run_table(run):
+    """(window, rows, overall share): a row per frame (t, dissipation rate, share outside the window,
+    the I quartiles of the dissipation); the overall share is NaN where nothing dissipated."""
+    frames = [read_frame(f) for f in list_frames(run)]
+    window = well_posed_window(material_of(frames[-1]).params)
+    rows = []
+    for f in frames:
+        power = dissipation(f)
+        quartiles = weighted_quantiles(f["inertial_number"], power, (0.25, 0.5, 0.75)) if power.sum() > 0 else []
+        rows.append((f["t"], float(power.sum()), ill_posed_dissipation_share(f, window), quartiles))
+    t = np.array([r[0] for r in rows])
+    rate = np.array([r[1] for r in rows])
+    share = np.nan_to_num(np.array([r[2] for r in rows]))
+    energy = np.trapezoid(rate, t)
+    return window, rows, (float(np.trapezoid(rate * share, t) / energy) if energy > 0 else float("nan"))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("runs", nargs="+")
+    for run in ap.parse_args().runs:
+        window, rows, overall = run_table(run)
+        where = f"well-posed for {window[0]:.3g} < I < {window[1]:.3g}" if window else "ill-posed at every I"
+        print(f"{run}: mu(I) {where}")
+        print(f"{'t [s]':>8} {'dissipation [W]':>16} {'ill-posed share':>16}   I below which 1/4, 1/2, 3/4 of it")
+        for t, power, share, quartiles in rows:
+            print(f"{t:8.4f} {power:16.4g} {share:16.3f}   " + " ".join(f"{q:.3g}" for q in quartiles))
+        print(f"over the run: {overall:.3f} of the energy dissipated at ill-posed I")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,95 @@
+"""Where the mu(I) friction law is well-posed (mpisph/well_posedness.py: Barker et al. 2015, in the
+form of Barker & Gray 2017, Eq. 3.9): rate-independent friction is ill-posed, 004_'s materials are
+well-posed in a window of I that scales with I_0, the glass beads' uniform incline flows inside its
+window and Lube's sand columns below theirs; the share of a frame's dissipation outside the window."""
+
+import math
+
+import numpy as np
+import pytest
+
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.parts import make_parts
+from mpisph.physics.mu_i_law import MuIParams
+from mpisph.references import MU_I_MATERIALS
+from mpisph.well_posedness import ill_posed_dissipation_share, ill_posedness, well_posed_window
+
+
+def law(name, I_0=None, I_s=0.0):
+    """MuIParams of a 004_ Table 1 material (the constants the window does not read are placeholders)."""
+    m = MU_I_MATERIALS[name]
+    mu_s, mu_2 = (math.tan(math.radians(m[k])) for k in ("mu_s_deg", "mu_2_deg"))
+    return MuIParams(mu_s, mu_2, m["I_0"] if I_0 is None else I_0, I_s, 0.6, 0.5, 2500.0, m["d"], 1e-5, 100.0, 1.0)
+
+
+@pytest.mark.parametrize("I_s", [0.0, 0.01])
+def test_rate_independent_friction_is_ill_posed(I_s):
+    """At I = 0 the law's slope drops out of nu = I mu'/mu, and C = mu(0)^2 > 0; with Eq. 18's shift
+    mu(0) = mu_s + (mu_2 - mu_s) I_s / (I_s + I_0)."""
+    m = law("sand_0.4mm", I_s=I_s)
+    mu_0 = m.mu_s + (m.mu_2 - m.mu_s) * I_s / (I_s + m.I_0)
+    assert ill_posedness(0.0, m) == pytest.approx(mu_0 ** 2, rel=1e-14)
+
+
+def test_at_i_0_the_criterion_takes_its_closed_form():
+    """At I = I_0 (no shift) mu is the mean of mu_s and mu_2 and nu = (mu_2 - mu_s) / (4 mu); glass
+    beads: C = -0.2148, inside the window."""
+    m = law("glass_beads")
+    mu = 0.5 * (m.mu_s + m.mu_2)
+    nu = (m.mu_2 - m.mu_s) / (4.0 * mu)
+    expected = 4 * nu ** 2 - 4 * nu + mu ** 2 * (1 - nu / 2) ** 2
+    assert ill_posedness(m.I_0, m) == pytest.approx(expected, rel=1e-13)
+    assert expected == pytest.approx(-0.2148, abs=1e-4)
+
+
+@pytest.mark.parametrize("name, window", [("glass_beads", (0.01935, 0.8523)),
+                                          ("sand_0.8mm", (0.1388, 1.382)), ("sand_0.4mm", (0.4315, 1.815))])
+def test_each_material_is_well_posed_in_one_window(name, window):
+    """The window's ends are where C changes sign; C < 0 inside, > 0 a little outside on either
+    side; the ends to four digits."""
+    m = law(name)
+    lo, hi = well_posed_window(m)
+    assert (lo, hi) == pytest.approx(window, rel=1e-3)
+    inside = np.geomspace(lo * 1.001, hi * 0.999, 50)
+    assert (ill_posedness(inside, m) < 0).all()
+    assert ill_posedness(lo * 0.999, m) > 0 and ill_posedness(hi * 1.001, m) > 0
+
+
+def test_the_window_scales_with_i_0():
+    """C depends on I only through I / I_0 (without Eq. 18's shift)."""
+    lo, hi = well_posed_window(law("sand_0.4mm"))
+    lo2, hi2 = well_posed_window(law("sand_0.4mm", I_0=2 * 2.65))
+    assert (lo2, hi2) == pytest.approx((2 * lo, 2 * hi), rel=1e-8)
+
+
+def test_a_nearly_rate_independent_law_has_no_window():
+    m = law("sand_0.4mm")._replace(mu_2=law("sand_0.4mm").mu_s * 1.01)
+    assert well_posed_window(m) is None
+
+
+def test_the_incline_is_inside_its_window_and_the_columns_are_below_theirs():
+    """The glass beads' uniform flow at 25 degrees, I_u = 0.133 (004_ Sec. 5.1), lies inside their
+    window; the sand columns' window starts above I = 0.4, where their collapses dissipate nearly all
+    their energy at I < 0.04 (scripts/well_posedness.py, docs/COLLAPSES.md)."""
+    lo, hi = well_posed_window(law("glass_beads"))
+    assert lo < 0.1330 < hi
+    assert well_posed_window(law("sand_0.4mm"))[0] > 0.4
+
+
+def test_the_dissipation_share_outside_the_window():
+    """eta gamma_dot^2 m / rho per grain: 1, 4 and 3 W at I = 0.01, 0.5 and 2 with the window
+    (0.432, 1.82): 4 of 8 W lie outside it; a wall particle does not count; with no window all of it;
+    NaN where nothing dissipates."""
+    frame = {"kind": np.array([0, 0, 0, 1]), "inertial_number": np.array([0.01, 0.5, 2.0, 0.01]),
+             "eta": np.array([1.0, 1.0, 3.0, 100.0]), "gamma_dot": np.array([1.0, 2.0, 1.0, 1.0]),
+             "mass": np.array([2.0, 2.0, 2.0, 2.0]), "rho": np.array([2.0, 2.0, 2.0, 2.0])}
+    assert ill_posed_dissipation_share(frame, (0.432, 1.82)) == pytest.approx(0.5, rel=1e-15)
+    assert ill_posed_dissipation_share(frame, None) == 1.0
+    assert math.isnan(ill_posed_dissipation_share(dict(frame, gamma_dot=np.zeros(4)), (0.432, 1.82)))
+
+
+def test_the_mu_i_start_up_report_names_the_window():
+    module = load_case_module("lube_collapse_2d")
+    p = resolve_params(module, {"dp": "0.02"})
+    lines = make_parts(build_case(module, p), p).scheme.report()
+    assert any("well-posed only for 0.432 < I < 1.82" in line for line in lines)
