@@ -11,8 +11,8 @@ C > 0 a perturbation of wavenumber k grows at a rate that rises without bound
 with k, so a discretisation resolves faster growth the finer it is and its
 results depend on the resolution rather than converge. C(0) = mu(0)^2 > 0:
 rate-independent friction (nu = 0) is ill-posed. For the law of 004_ Eq. 7 nu
-rises from 0 at I = 0 to a largest value near I = I_0 and falls again, so the
-law is well-posed in a window of inertial numbers or nowhere: glass beads
+rises from 0 at I = 0 to a largest value near I = I_0 and falls again, and the
+law is well-posed in one window of inertial numbers (or nowhere): glass beads
 (004_ Table 1, I_0 = 0.279) from I = 0.019 to 0.85, the 0.32 mm sand of
 Lube's columns (I_0 = 2.65) from 0.43 to 1.8 (tests/test_well_posedness.py).
 
@@ -47,15 +47,15 @@ def ill_posedness(I, m):
 
 def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
     """(I_1, I_2): the inertial numbers between which C(I) < 0, each to a relative 1e-10 by
-    bisection from a logarithmic scan of [lowest, highest]; None where C >= 0 throughout. The law
-    of 004_ Eq. 7 has one such window at most (module docstring)."""
+    bisection from a logarithmic scan of [lowest, highest]; None where C >= 0 throughout;
+    ValueError where the scan finds more than one window or one reaching its ends."""
     I = np.geomspace(lowest, highest, points)
     well = ill_posedness(I, m) < 0.0
     if not well.any():
         return None
     first, last = np.flatnonzero(well)[[0, -1]]
-    if first == 0 or last == points - 1:
-        raise ValueError(f"mu(I) is well-posed up to the end of the scan [{lowest:g}, {highest:g}]")
+    if first == 0 or last == points - 1 or not well[first:last + 1].all():
+        raise ValueError(f"mu(I) is not well-posed in one window inside [{lowest:g}, {highest:g}]")
     return _crossing(I[first - 1], I[first], m), _crossing(I[last], I[last + 1], m)
 
 
