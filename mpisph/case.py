@@ -373,3 +373,10 @@ def build_case(module, values):
     """Call the case's ``setup`` with the parameter values as attributes."""
     return module.setup(SimpleNamespace(**values))
 
+
+def case_of_frame(params):
+    """The Case a frame was written with, built again from the frame's parameters (``params`` of
+    io.frames.read_frame); a parameter newer than the frame takes its default."""
+    module = load_case_module(params["case"])
+    return build_case(module, resolve_params(module, {}, base=params))
+

@@ -71,16 +71,31 @@ def _crossing(lo, hi, m):
     return math.sqrt(lo * hi)
 
 
+def dissipation_rate(frame):
+    """Each particle's viscous dissipation rate eta gamma_dot^2 m / rho [W] (0 for a wall)."""
+    return np.where(frame["kind"] == MOVING, frame["eta"] * frame["gamma_dot"] ** 2 * frame["mass"] / frame["rho"],
+                    0.0)
+
+
 def ill_posed_dissipation_share(frame, window):
-    """The share of a frame's viscous dissipation, sum over the grains of eta gamma_dot^2 m / rho,
-    that happens at inertial numbers outside ``window`` (I_1, I_2) (None: all of it): how much of
-    the flow runs where the law is ill-posed. NaN in a frame that dissipates nothing."""
-    grains = frame["kind"] == MOVING
-    I = frame["inertial_number"][grains]
-    power = (frame["eta"] * frame["gamma_dot"] ** 2 * frame["mass"] / frame["rho"])[grains]
+    """The share of a frame's viscous dissipation (dissipation_rate) that happens at inertial
+    numbers outside ``window`` (I_1, I_2) (None: all of it): how much of the flow runs where the law
+    is ill-posed. NaN in a frame that dissipates nothing."""
+    power = dissipation_rate(frame)
     total = power.sum()
     if not total > 0.0:
         return math.nan
     if window is None:
         return 1.0
+    I = frame["inertial_number"]
     return float(power[(I <= window[0]) | (I >= window[1])].sum() / total)
+
+
+def ill_posed_energy_share(frames, window):
+    """The share of the energy a run dissipated, the frames' dissipation rates integrated in time
+    by trapezoids, at inertial numbers outside ``window``; NaN where nothing was dissipated."""
+    t = np.array([f["t"] for f in frames])
+    rate = np.array([dissipation_rate(f).sum() for f in frames])
+    share = np.nan_to_num(np.array([ill_posed_dissipation_share(f, window) for f in frames]))
+    energy = np.trapezoid(rate, t)
+    return float(np.trapezoid(rate * share, t) / energy) if energy > 0.0 else math.nan

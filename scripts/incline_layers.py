@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.case import case_of_frame
 from mpisph.incline_measures import (carried_pressure, flow_depth, hydrostatic, kernel_moment, layer_speeds,
                                      profile_figures, weight_above, with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
@@ -217,9 +217,7 @@ def main():
     a = ap.parse_args()
     frames = [read_frame(f) for f in list_frames(a.run)[-a.frames:]]
     p = frames[-1]["params"]
-    module = load_case_module("inclined_plane")
-    material = build_case(module, resolve_params(module, {k: str(v) for k, v in p.items()
-                                                          if k in module.PARAMS})).material
+    material = case_of_frame(p).material
     print(f"{a.run}: {len(frames)} frames, t = {frames[0]['t']:.2f} to {frames[-1]['t']:.2f} s")
     print(f"{'t [s]':>6} {'mean':>6} {'surface':>7} {'L2':>6} {'p/p_h':>6} {'sp/p_h':>6}   "
           "(speeds over the analytical)")

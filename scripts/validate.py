@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from mpisph import incline_measures, measure, pairing, references, surface  # noqa: E402
-from mpisph.case import build_case, load_case_module, resolve_params  # noqa: E402
+from mpisph.case import build_case, case_of_frame, load_case_module, resolve_params  # noqa: E402
 from mpisph.compare import measures as compare_measures  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.granular_flow import CONSISTENT_MU_I, DEVIATORIC_MU_I  # noqa: E402
@@ -30,6 +30,7 @@ from mpisph.io.frames import list_frames, read_frame  # noqa: E402
 from mpisph.kernels import Kernel  # noqa: E402
 from mpisph.launch import mpirun_mpisph  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
+from mpisph.well_posedness import ill_posed_energy_share, well_posed_window  # noqa: E402
 
 from clustered import shifted_on_the_surface  # noqa: E402  (this directory)
 
@@ -1134,9 +1135,20 @@ def _collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_fram
     last = frames[-1]
     extent = measure.radial_runout(last, dp) if radial else measure.runout(last, dp)
     rest = measure.edge_rest_ratio(frames[-2], last, diag["t"], diag["front"], dp, radial=radial)
+    window = well_posed_window(case_of_frame(last["params"]).material.params)
     return {"a": a, "H0": H0, "dp": dp, "length": length, "radial": radial, "diag": diag, "last": last,
             "cmd": shown, "ratio": (extent - length) / length, "rest": rest, "t_end": last["t"],
-            "onset": measure.collapse_onset(diag["t"], diag["front"], length)}
+            "onset": measure.collapse_onset(diag["t"], diag["front"], length), "window": window,
+            "ill_posed": ill_posed_energy_share(frames, window)}
+
+
+def _ill_posed_row(runs, label):
+    """The share of each run's dissipated energy at inertial numbers where its mu(I) is ill-posed
+    (mpisph/well_posedness.py; docs/COLLAPSES.md)."""
+    window = runs[0]["window"]
+    where = f"outside {window[0]:.3g} < I < {window[1]:.3g}" if window else "at every I"
+    return (f"share of the energy dissipated where the law is ill-posed ({where}; Barker et al. 2015) at {label}",
+            " / ".join(f"{r['ill_posed']:.3f}" for r in runs), "-", "-", "-")
 
 
 def _centre(r):
@@ -1201,6 +1213,7 @@ def lube_collapse_2d(ranks):
     ax[2].legend(fontsize=7)
     rows.append(("onset [s] (the front 0.05 L_0 out) at a = " + ", ".join(f"{r['a']:g}" for r in runs),
                  " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-"))
+    rows.append(_ill_posed_row(runs, "a = " + ", ".join(f"{r['a']:g}" for r in runs)))
     more = {}  # the runs below by (a, variant, t_end)
     for a_k, variant, what, t_end in ((1.0, (), "the defaults", 3.0), (0.5, (), "the defaults", 3.0),
                                       (1.0, ("viscosity_mean=harmonic",), "Eq. 37's harmonic mean as printed", None),
@@ -1235,7 +1248,9 @@ def lube_collapse_2d(ranks):
             "(measure.runout); the front in the left panel is the farthest grain (diagnostics.csv). With the "
             "harmonic mean the grains at the free surface (p = 0, so eta = 0) are decoupled from the pile and "
             "keep sliding over it: the deposit spreads to nearly twice Lube's runout. An open gap of issue 14: "
-            "(1) the runouts follow 1.2 a up to a = 6, with too little bend to a^(2/3) (004_ also found no "
+            "(0) the columns dissipate their energy where the sand's friction law is ill-posed (the row of "
+            "shares), so the runouts at this spacing need not converge with the resolution, and they do not "
+            "(docs/COLLAPSES.md, 'Why the runouts do not converge'); (1) the runouts follow 1.2 a up to a = 6, with too little bend to a^(2/3) (004_ also found no "
             "agreement above a = 3); Balmforth & Kerswell (2005) measured a^(0.9 +- 0.1) in wide channels and "
             "a^(0.65 +- 0.05) only in narrow slots, whose side walls a plane-strain run lacks "
             "(docs/COLLAPSES.md); (2) the deposits creep on, as the regularisation lets a grain below yield "
@@ -1374,6 +1389,7 @@ def lube_collapse_3d(ranks):
               " / ".join(f"{c:.2f}" for c in centres),
               f"1 below a = {LUBE_UNDISTURBED_3D:g}",
               "; ".join(f"{100 * (c - 1):+.0f}% at a = {a:g}" for a, c in undisturbed), "-"),
+             _ill_posed_row(runs, f"a = {aspects}"),
              ("planar a = 0.5, L_0 / dp = 20: (L_inf - L_0) / L_0 of the 3D slab; of the 2D run",
               f"{slab['ratio']:.2f}; {planar['ratio']:.2f}", "0.60 (1.2 a)",
               f"{100 * (slab['ratio'] / planar['ratio'] - 1):+.0f}% (3D against 2D)", "-")]
@@ -1395,7 +1411,9 @@ def lube_collapse_3d(ranks):
             f"L_0 beyond the column, {measure.beyond_the_edge(slab['last'], slab['dp']).sum()} of its grains "
             f"beyond its connected deposit's edge (the 2D run's farthest: {_farthest(planar):.2f} L_0). Open gaps "
             f"of issue 14: {short_text}"
-            "the deposits' edges creep as in the planar "
+            "the columns dissipate their energy where the sand's friction law is ill-posed (the row of shares), "
+            "so their runouts need not converge with the resolution (docs/COLLAPSES.md, 'Why the runouts do not "
+            "converge'); the deposits' edges creep as in the planar "
             "runs (the rest rows); the deposits' centres sink (the row of tops), where Lube's top stays "
             f"undisturbed below a = {LUBE_UNDISTURBED_3D:g}.")
     return "Axisymmetric collapses of sand columns in 3D, mu(I) (004_ Sec. 5.2, Lube et al. 2004)", runs[0]["cmd"], \
@@ -1432,10 +1450,13 @@ def lube_collapse_3d_convergence(ranks):
              "converged", f"{100 * change:+.1f}% {last_step}", "5%", converged),
             (f"a = {a_study:g}: the grains' front + dp / 2 (measure.front_position), over r_0, at r_0 / dp = {at}",
              " / ".join(f"{x:.3f}" for x in fronts), "converged", f"{100 * front_change:+.1f}% {last_step}", "-"),
-            _rest_row(study[-1], f"the connected deposit's edge at r_0 / dp = {1 / spacing[-1]:.3g}")]
+            _rest_row(study[-1], f"the connected deposit's edge at r_0 / dp = {1 / spacing[-1]:.3g}"),
+            _ill_posed_row(study, f"r_0 / dp = {at}")]
     unconverged = (" So the runouts of lube_collapse_3d, each at a single spacing, are likely short of what "
                    "this model gives at finer spacings (the planar runs grow by 11-18 % from L_0 / dp = 20 to "
-                   "40: docs/COLLAPSES.md).")
+                   "40: docs/COLLAPSES.md). The columns dissipate their energy where the sand's friction law is "
+                   "ill-posed (the last row), where results need not converge with the resolution (docs/COLLAPSES.md, "
+                   "'Why the runouts do not converge').")
     note = (f"The column a = {a_study:g} of lube_collapse_3d at {', '.join(str(n) for n in layers)} layers. "
             f"Each refinement moves the runout by "
             f"{', '.join(f'{100 * c:+.1f}%' for c in changes)} and the grains' front by "

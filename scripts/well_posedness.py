@@ -14,21 +14,10 @@ import argparse
 
 import numpy as np
 
-from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.case import case_of_frame
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.well_posedness import ill_posed_dissipation_share, well_posed_window
-
-
-def material_of(frame):
-    """The MuIGranular of the case and parameters a frame was written with."""
-    p = frame["params"]
-    module = load_case_module(p["case"])
-    return build_case(module, resolve_params(module, {k: str(v) for k, v in p.items() if k in module.PARAMS})).material
-
-
-def dissipation(frame):
-    """Each grain's viscous dissipation rate eta gamma_dot^2 m / rho [W]."""
-    return frame["eta"] * frame["gamma_dot"] ** 2 * frame["mass"] / frame["rho"]
+from mpisph.well_posedness import dissipation_rate, ill_posed_dissipation_share, ill_posed_energy_share, \
+    well_posed_window
 
 
 def weighted_quantiles(values, weights, quantiles):
@@ -40,19 +29,16 @@ def weighted_quantiles(values, weights, quantiles):
 
 def run_table(run):
     """(window, rows, overall share): a row per frame (t, dissipation rate, share outside the window,
-    the I quartiles of the dissipation); the overall share is NaN where nothing dissipated."""
+    the I quartiles of the dissipation); the overall share (ill_posed_energy_share) is NaN where
+    nothing dissipated."""
     frames = [read_frame(f) for f in list_frames(run)]
-    window = well_posed_window(material_of(frames[-1]).params)
+    window = well_posed_window(case_of_frame(frames[-1]["params"]).material.params)
     rows = []
     for f in frames:
-        power = dissipation(f)
+        power = dissipation_rate(f)
         quartiles = weighted_quantiles(f["inertial_number"], power, (0.25, 0.5, 0.75)) if power.sum() > 0 else []
         rows.append((f["t"], float(power.sum()), ill_posed_dissipation_share(f, window), quartiles))
-    t = np.array([r[0] for r in rows])
-    rate = np.array([r[1] for r in rows])
-    share = np.nan_to_num(np.array([r[2] for r in rows]))
-    energy = np.trapezoid(rate, t)
-    return window, rows, (float(np.trapezoid(rate * share, t) / energy) if energy > 0 else float("nan"))
+    return window, rows, ill_posed_energy_share(frames, window)
 
 
 def main():

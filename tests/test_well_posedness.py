@@ -12,7 +12,8 @@ from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
 from mpisph.physics.mu_i_law import MuIParams
 from mpisph.references import MU_I_MATERIALS
-from mpisph.well_posedness import ill_posed_dissipation_share, ill_posedness, well_posed_window
+from mpisph.well_posedness import ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
+    well_posed_window
 
 
 def law(name, I_0=None, I_s=0.0):
@@ -86,6 +87,18 @@ def test_the_dissipation_share_outside_the_window():
     assert ill_posed_dissipation_share(frame, (0.432, 1.82)) == pytest.approx(0.5, rel=1e-15)
     assert ill_posed_dissipation_share(frame, None) == 1.0
     assert math.isnan(ill_posed_dissipation_share(dict(frame, gamma_dot=np.zeros(4)), (0.432, 1.82)))
+
+
+def test_the_energy_share_integrates_the_frames_in_time():
+    """Two grains, at I = 0.01 (outside the window) and 0.5 (inside), dissipating 0 and 0 W at t = 0,
+    1 and 1 W at t = 1 s, 2 and 0 W at t = 2 s: by trapezoids 3 J in all, 2 J of them at the first."""
+    def frame(t, first, second):
+        return {"t": t, "kind": np.array([0, 0]), "inertial_number": np.array([0.01, 0.5]),
+                "eta": np.array([first, second]), "gamma_dot": np.ones(2), "mass": np.ones(2), "rho": np.ones(2)}
+
+    frames = [frame(0.0, 0.0, 0.0), frame(1.0, 1.0, 1.0), frame(2.0, 2.0, 0.0)]
+    assert ill_posed_energy_share(frames, (0.432, 1.82)) == pytest.approx(2.0 / 3.0, rel=1e-15)
+    assert math.isnan(ill_posed_energy_share(frames[:1], (0.432, 1.82)))
 
 
 def test_the_mu_i_start_up_report_names_the_window():
