@@ -29,19 +29,16 @@ import math
 import numpy as np
 
 from .particles import MOVING
-
-
-def friction_and_slope(I, m):
-    """mu(I) and mu'(I) of 004_ Eq. 7 (Eq. 18 with m.I_s > 0; mu_i_law.friction), for arrays of I."""
-    a = np.asarray(I, dtype=float) + m.I_s
-    span = m.mu_2 - m.mu_s
-    return m.mu_s + span * a / (a + m.I_0), span * m.I_0 / (a + m.I_0) ** 2
+from .physics.mu_i_law import friction
 
 
 def ill_posedness(I, m):
-    """C(I) of the module docstring: negative where the law is well-posed."""
-    mu, slope = friction_and_slope(I, m)
-    nu = np.asarray(I, dtype=float) * slope / mu
+    """C(I) of the module docstring, for a number or an array of I: negative where the law is
+    well-posed. mu is mu_i_law.friction (004_ Eq. 7, Eq. 18 with m.I_s > 0), mu' its derivative
+    (mu_2 - mu_s) I_0 / (I + I_s + I_0)^2."""
+    I = np.asarray(I, dtype=float)
+    mu = friction(I, m)
+    nu = I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / mu
     return 4.0 * nu * nu - 4.0 * nu + mu * mu * (1.0 - 0.5 * nu) ** 2
 
 
