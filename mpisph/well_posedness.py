@@ -44,9 +44,10 @@ def ill_posedness(I, m):
 
 def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
     """(I_1, I_2): the inertial numbers between which C(I) < 0, each to a relative 1e-10 by
-    bisection from a logarithmic scan of [lowest, highest]; None where C >= 0 throughout;
-    ValueError where the scan finds more than one window or one reaching its ends."""
-    I = np.geomspace(lowest, highest, points)
+    bisection from a logarithmic scan of [lowest, highest] I_0 (C depends on I / I_0 where I_s = 0);
+    None where C >= 0 throughout; ValueError where the scan finds more than one window or one
+    reaching its ends."""
+    I = m.I_0 * np.geomspace(lowest, highest, points)
     well = ill_posedness(I, m) < 0.0
     if not well.any():
         return None

@@ -61,6 +61,10 @@ def test_the_window_scales_with_i_0():
     lo, hi = well_posed_window(law("sand_0.4mm"))
     lo2, hi2 = well_posed_window(law("sand_0.4mm", I_0=2 * 2.65))
     assert (lo2, hi2) == pytest.approx((2 * lo, 2 * hi), rel=1e-8)
+    # the scan follows I_0 far from the materials' values
+    for scale in (1e-10, 1e4):
+        assert well_posed_window(law("sand_0.4mm", I_0=scale * 2.65)) == pytest.approx((scale * lo, scale * hi),
+                                                                                       rel=1e-8)
 
 
 def test_a_nearly_rate_independent_law_has_no_window():
