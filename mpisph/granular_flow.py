@@ -7,7 +7,7 @@ MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
 
 # The corrected viscous stress taken implicitly and the three options that make the friction law see
 # the continuum's stresses and strain rate (physics/mu_i.py, docs/INCLINE.md), as --set words: what
-# brings the CI-sized incline to its uniform flow (scripts/validate.py, tests/test_mu_i_incline.py).
+# brings the CI-sized incline to its uniform flow (scripts/validate.py, section inclined_plane_steady).
 CONSISTENT_MU_I = ("viscous_form=corrected_stress", "viscous_step=implicit", "pressure_form=isotropic",
                    "law_pressure=carried_mean", "law_strain_rate=deviatoric_kernel_mean")
 
