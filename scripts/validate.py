@@ -1561,7 +1561,8 @@ def main():
         print(f"{title}: done")
     head = ("# Validation\n\nWritten by `python scripts/validate.py` (each section's command gives its rank "
             "count; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
-            "`tests/test_validation.py` and `tests/test_validation_solids.py` assert the same comparisons.\n\n")
+            "`tests/test_validation.py`, `tests/test_validation_solids.py` and `tests/test_validation_beam.py` "
+            "assert the same comparisons.\n\n")
     page.write_text(head + "\n".join(sections[k] for k in VALIDATIONS if k in sections))
     if misses:
         raise SystemExit("outside tolerance:\n  " + "\n  ".join(misses))

@@ -7,6 +7,8 @@ import time
 
 import pytest
 
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
 from mpisph.launch import mpirun_mpisph
 
 
@@ -23,6 +25,13 @@ LAUNCHER_NOISE = re.compile(r"^\[warn\] Epoll [A-Z]+\(\d+\) on fd \d+ failed\.")
 def stderr_lines(stderr):
     """The non-blank lines of a run's stderr, without mpirun's libevent shutdown warning."""
     return [ln for ln in stderr.splitlines() if ln.strip() and not LAUNCHER_NOISE.match(ln)]
+
+
+def run(case, args, out, ranks=1, timeout=900):
+    """``case`` with ``args``, written to ``out``: its frames (read) and diagnostics."""
+    r = mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks, timeout=timeout)
+    assert r.returncode == 0, r.stderr
+    return [read_frame(f) for f in list_frames(out)], read_diagnostics(out / "diagnostics.csv")
 
 
 def runs_on(tmp_path_factory, name, case, args, ranks=(1, 2), timeout=600):

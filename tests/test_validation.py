@@ -3,8 +3,8 @@
 Each test runs the case under mpirun and compares frames or diagnostics with
 the closed-form solution or the experiment, with the tolerance the engine
 issue states. Runs are bitwise identical on any rank count
-(test_rank_agreement.py), so the long ones use one rank to keep the suite
-short. docs/VALIDATION.md shows the same comparisons as plots
+(test_rank_agreement.py), so they run on one rank (tests/conftest.py says
+why). docs/VALIDATION.md shows the same comparisons as plots
 (scripts/validate.py).
 """
 
@@ -12,20 +12,12 @@ import numpy as np
 import pytest
 
 from mpisph import measure, references
-from mpisph.io.diagnostics import read_diagnostics
-from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
-from mpirun import mpisph
-
-
-def run(case, args, out, ranks=2, timeout=900):
-    r = mpisph([case, *args, "--out", out, "--quiet"], ranks=ranks, timeout=timeout)
-    assert r.returncode == 0, r.stderr
-    return [read_frame(f) for f in list_frames(out)], read_diagnostics(out / "diagnostics.csv")
+from mpirun import run
 
 
 def test_elliptical_drop_semi_axis(tmp_path):
-    """dp = 0.02 on 2 ranks: y semi-axis at t = 0.0076 s within 1.5 % of 1.944517; mass exact."""
+    """dp = 0.02: y semi-axis at t = 0.0076 s within 1.5 % of 1.944517; mass exact."""
     frames, diag = run("elliptical_drop", ["--t-end", "0.0076", "--output-interval", "0.0038"], tmp_path)
     last = frames[-1]
     assert last["t"] == pytest.approx(0.0076)
@@ -50,7 +42,7 @@ def test_rotating_square_patch(tmp_path):
 
 def test_lid_driven_cavity_re100(tmp_path):
     """dp = 1/50, Re = 100: RMS error of u and v on the centre lines against Ghia <= 0.03."""
-    frames, _ = run("lid_driven_cavity", ["--t-end", "10", "--output-interval", "5"], tmp_path, ranks=1)
+    frames, _ = run("lid_driven_cavity", ["--t-end", "10", "--output-interval", "5"], tmp_path)
     last, kernel = frames[-1], Kernel("wendland_c2", 1.3 / 50, 2)
     y, x = references.GHIA_Y[1:-1], references.GHIA_X[1:-1]
     u = measure.line_average(last, np.stack([np.full_like(y, 0.5), y], 1), 0, kernel)
@@ -63,7 +55,7 @@ def test_lid_driven_cavity_re100(tmp_path):
 def dam_break_front(tmp_path_factory):
     """(T, front z/L) from one dam-break run to T = 3.19, dp = 0.02 L."""
     frames, _ = run("dam_break_2d", ["--t-end", "0.72", "--output-interval", "0.02"],
-                    tmp_path_factory.mktemp("dam_break"), ranks=1)
+                    tmp_path_factory.mktemp("dam_break"))
     T = np.array([f["t"] for f in frames]) * np.sqrt(2 * 9.81)
     return T, np.array([measure.surge_front(f, 0.02) for f in frames])
 
