@@ -197,10 +197,13 @@ def run(args, comm):
               f"mpisph {args.case} --restart {stopped.frame} --out {out_dir}", flush=True)
 
 
-def main(argv=None):
+def main(argv=None, comm=None):
+    """Run the command ``argv`` (default: the command line) on the ranks of ``comm`` (default: all of
+    them; tests/runs_in_one_launch.py gives it a part of them); returns the exit status."""
     argv = sys.argv[1:] if argv is None else argv
-    from mpi4py import MPI
-    comm = MPI.COMM_WORLD
+    if comm is None:
+        from mpi4py import MPI
+        comm = MPI.COMM_WORLD
     try:
         if argv[:1] == ["list"]:
             if comm.rank == 0:

@@ -30,7 +30,12 @@ def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT):
     still going after ``timeout`` seconds is killed (subprocess.TimeoutExpired),
     so a deadlock fails instead of hanging.
     """
-    cmd = ["mpirun", "-n", str(ranks), sys.executable, "-m", "mpisph", *map(str, args)]
+    return mpirun_python(["-m", "mpisph", *args], ranks=ranks, timeout=timeout, root=root)
+
+
+def mpirun_python(args, ranks=1, timeout=None, root=ROOT):
+    """``mpirun -n ranks python args`` as ``mpirun_mpisph`` starts it."""
+    cmd = ["mpirun", "-n", str(ranks), sys.executable, *map(str, args)]
     env = dict(MPI_ENV, **os.environ)
     env["PYTHONPATH"] = str(root) + os.pathsep + env.get("PYTHONPATH", "")
     return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)

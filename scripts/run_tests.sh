@@ -1,24 +1,24 @@
 #!/usr/bin/env bash
-# Run mpisph's test suite in two stages with the .venv Python:
-#   (a) serial:  pytest -m "not mpi", its test files shared among one pytest-xdist
-#                worker per core                               (timeout 2400 s)
-#   (b) MPI:     mpirun -n 2 pytest -m mpi --with-mpi          (timeout 600 s)
-# Extra arguments are passed to both pytest runs. pytest's exit code 5 ("no
+# Run mpisph's test suite in three stages with the .venv Python:
+#   (a) serial:  pytest -m "not mpi and not ranks", its test files shared among
+#                one pytest-xdist worker per core               (timeout 2400 s)
+#   (b) ranks:   pytest -m "ranks and not mpi" in one process: the tests that
+#                start runs on several ranks (tests/conftest.py) (timeout 1800 s)
+#   (c) MPI:     mpirun -n 2 pytest -m mpi --with-mpi          (timeout 600 s)
+# Extra arguments are passed to every pytest run. pytest's exit code 5 ("no
 # tests collected") counts as success for a stage, but if no test ran in
-# either stage the script fails (set MPISPH_ALLOW_NO_TESTS=1 to allow that).
+# any stage the script fails (set MPISPH_ALLOW_NO_TESTS=1 to allow that).
 # The last line printed is "summary: N passed, M failed" (read by CI).
 #
 # MPISPH_TEST_PATHS overrides the test paths (default "tests/"), e.g. to try
-# this script on a scratch directory; MPISPH_SERIAL_TIMEOUT / MPISPH_MPI_TIMEOUT
-# override the stage timeouts (seconds). The timeouts only end a hung run: the serial
-# stage took about 12 min on one core from a cold numba cache on the usual machine,
-# and twice that on a slow day (2026-11-27: it passed 1500 s).
+# this script on a scratch directory; MPISPH_SERIAL_TIMEOUT / MPISPH_RANKS_TIMEOUT /
+# MPISPH_MPI_TIMEOUT override the stage timeouts (seconds). The timeouts only end a
+# hung run.
 # MPISPH_TEST_WORKERS sets the serial stage's workers (default: the cores; 0 runs
 # it in one process). A worker takes whole files (--dist loadfile), so a file's
-# module fixtures run once. On 2 cores from a cold cache (2026-11-27, a slow day)
-# the suite took 25.0 min in one process and 21.2 min on two workers: the tests
-# that start 2- and 3-rank runs then share the cores with the other worker, and
-# test_rank_agreement's runs took 775 s instead of 270 s.
+# module fixtures run once. Stage (b) runs alone because ranks that wait for each
+# other beside a second worker take turns on the cores: on 2 cores (2026-11-27)
+# test_rank_agreement's runs took 822 s beside the other worker and 270 s alone.
 # Set up .venv first with: bash scripts/bootstrap.sh test
 set -euo pipefail
 
@@ -36,6 +36,7 @@ export PYTHONUNBUFFERED=1
 
 read -r -a TEST_PATHS <<< "${MPISPH_TEST_PATHS:-tests/}"
 SERIAL_TIMEOUT="${MPISPH_SERIAL_TIMEOUT:-2400}"
+RANKS_TIMEOUT="${MPISPH_RANKS_TIMEOUT:-1800}"
 MPI_TIMEOUT="${MPISPH_MPI_TIMEOUT:-600}"
 WORKERS="${MPISPH_TEST_WORKERS:-$(nproc)}"
 
@@ -83,16 +84,27 @@ record_stage() {
 # ---------------------------------------------------------------------------
 # (a) serial tests
 # ---------------------------------------------------------------------------
-echo "== run_tests: serial tests (-m 'not mpi', $WORKERS workers) =="
+echo "== run_tests: serial tests (-m 'not mpi and not ranks', $WORKERS workers) =="
 rc=0
-timeout -k 30 "$SERIAL_TIMEOUT" "$VPY" -m pytest -q -m "not mpi" -n "$WORKERS" --dist loadfile --timeout=900 \
-    "${TEST_PATHS[@]}" "$@" \
+timeout -k 30 "$SERIAL_TIMEOUT" "$VPY" -m pytest -q -m "not mpi and not ranks" -n "$WORKERS" --dist loadfile \
+    --timeout=900 "${TEST_PATHS[@]}" "$@" \
     2>&1 | tee "$LOGDIR/serial.log" || rc=${PIPESTATUS[0]}
 read -r s_passed s_failed < <(pytest_counts "$LOGDIR/serial.log")
 record_stage "serial" "$rc" "$s_passed" "$s_failed" "serial tests timed out after $SERIAL_TIMEOUT s"
 
 # ---------------------------------------------------------------------------
-# (b) MPI tests: every rank runs pytest; rank 0 prints live, every rank logs
+# (b) tests that start runs on several ranks, one at a time
+# ---------------------------------------------------------------------------
+echo "== run_tests: tests of runs on several ranks (-m 'ranks and not mpi', one process) =="
+rc=0
+timeout -k 30 "$RANKS_TIMEOUT" "$VPY" -m pytest -q -m "ranks and not mpi" --timeout=900 \
+    "${TEST_PATHS[@]}" "$@" \
+    2>&1 | tee "$LOGDIR/ranks.log" || rc=${PIPESTATUS[0]}
+read -r r_passed r_failed < <(pytest_counts "$LOGDIR/ranks.log")
+record_stage "ranks" "$rc" "$r_passed" "$r_failed" "tests of runs on several ranks timed out after $RANKS_TIMEOUT s"
+
+# ---------------------------------------------------------------------------
+# (c) MPI tests: every rank runs pytest; rank 0 prints live, every rank logs
 # to its own file so the summaries can be told apart.
 # ---------------------------------------------------------------------------
 echo "== run_tests: MPI tests (mpirun -n 2, -m mpi --with-mpi) =="
@@ -133,7 +145,7 @@ record_stage "mpi" "$rc" "$m_passed" "$m_failed" "MPI tests timed out (deadlock?
 # ---------------------------------------------------------------------------
 echo "== run_tests: ${STAGE_NOTES[*]} =="
 if [ "$STATUS" -eq 0 ] && [ $(( TOTAL_PASSED + TOTAL_FAILED )) -eq 0 ] && [ "${MPISPH_ALLOW_NO_TESTS:-0}" != 1 ]; then
-    echo "run_tests: no test ran in either stage" >&2
+    echo "run_tests: no test ran in any stage" >&2
     STATUS=1
 fi
 echo "summary: $TOTAL_PASSED passed, $TOTAL_FAILED failed"

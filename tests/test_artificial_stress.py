@@ -96,6 +96,7 @@ def test_no_net_force_on_a_cloud_in_random_stress():
     assert np.abs(total).max() < 1e-12 * (mass[:, None] * np.abs(acc)).sum()
 
 
+@pytest.mark.ranks
 def test_the_cohesive_cut_with_artificial_stress_has_the_same_bits_on_one_and_two_ranks(tmp_path):
     args = ["cohesive_failure_2d", "--set", "dp=0.1", "stabiliser=artificial_stress", "--t-end", "0.2",
             "--output-interval", "0.1", "--quiet"]

@@ -69,6 +69,7 @@ def test_body_outside_domain(tmp_path):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.ranks
 def test_more_ranks_than_slabs(existing_output):
     out, marker = existing_output
     # dp = 1 gives a support of 2.6 m in a 5 m domain: two slabs
@@ -78,6 +79,7 @@ def test_more_ranks_than_slabs(existing_output):
     assert marker.read_bytes() == b"earlier result"
 
 
+@pytest.mark.ranks
 def test_unwritable_output_directory(tmp_path):
     blocker = tmp_path / "a_file"
     blocker.write_text("not a directory")
@@ -100,6 +102,7 @@ def test_restart_missing_file(tmp_path, existing_output):
     assert marker.read_bytes() == b"earlier result"
 
 
+@pytest.mark.ranks
 def test_restart_truncated_file(tmp_path, good_frame, existing_output):
     out, marker = existing_output
     cut = tmp_path / "cut.hdf"
@@ -126,6 +129,7 @@ def test_restart_frame_of_another_case(good_frame, existing_output):
     assert marker.read_bytes() == b"earlier result"
 
 
+@pytest.mark.ranks
 def test_blow_up_names_step_time_rank_particle(tmp_path):
     """The drop stretches past the domain edge: the run stops and writes a last frame."""
     out = tmp_path / "blow"
@@ -168,6 +172,7 @@ def test_unknown_kernel(existing_output):
     assert_clean_error(result, "kernel must be one of")
 
 
+@pytest.mark.ranks
 def test_a_case_too_large_for_the_node_is_refused_with_its_count(existing_output, monkeypatch):
     """A case whose lattices fit but whose run would not (memory.check_fits, 2 ranks on this node)."""
     from mpisph import memory

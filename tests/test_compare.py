@@ -24,6 +24,7 @@ def table_rows(path):
     return [line for line in path.read_text().splitlines() if line.startswith("| ") and "---" not in line][1:]
 
 
+@pytest.mark.ranks
 def test_a_cut_with_and_without_utvf_side_by_side(tmp_path):
     r = compare("cohesive_failure_2d", "--stabiliser", "none,utvf", "--set", "dp=0.1", "t_end=0.1",
                 "output_interval=0.05", "--out", tmp_path, "-n", "2")
@@ -80,6 +81,7 @@ def test_what_cannot_be_compared_is_one_line(tmp_path, args, message):
     assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
 
 
+@pytest.mark.ranks
 def test_compare_is_not_started_under_mpirun(tmp_path):
     r = compare("cohesive_failure_2d", "--stabiliser", "none", "--out", tmp_path, ranks=2)
     assert r.returncode == 2 and "without mpirun" in r.stderr

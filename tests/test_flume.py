@@ -63,6 +63,7 @@ def test_no_two_particles_of_the_flume_crowd():
     assert len(nbr) == 0
 
 
+@pytest.mark.ranks
 def test_the_flume_on_eight_ranks_ends_with_the_bits_of_one(tmp_path):
     args = ["--set", "dp=0.1", "--t-end", "0.12", "--output-interval", "0.06", "--quiet"]
     ends = {}

@@ -11,6 +11,8 @@ from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpirun import runs_on
 
+pytestmark = pytest.mark.ranks  # tests/conftest.py
+
 CASE = str(Path(__file__).parent / "cases" / "pushed_square.py")
 
 

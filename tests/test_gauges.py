@@ -16,6 +16,8 @@ from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpirun import runs_on
 
+pytestmark = pytest.mark.ranks  # tests/conftest.py
+
 CASE = str(Path(__file__).parent / "cases" / "gauged_tank.py")
 
 

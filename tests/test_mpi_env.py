@@ -20,7 +20,8 @@ WRITE_CORES = (
     "open(os.path.join(sys.argv[1], rank), 'w').write(str(len(os.sched_getaffinity(0))))"
 )
 
-pytestmark = pytest.mark.skipif(CORES < 2, reason="binding to one core cannot be told apart on one core")
+pytestmark = [pytest.mark.skipif(CORES < 2, reason="binding to one core cannot be told apart on one core"),
+              pytest.mark.ranks]  # tests/conftest.py
 
 
 def unbound_environment():

@@ -17,6 +17,8 @@ from mpisph.io.series import SERIES_NAME
 from mpirun import mpisph
 from repo_script import load_script
 
+pytestmark = pytest.mark.ranks  # tests/conftest.py
+
 ROOT = Path(__file__).resolve().parent.parent
 CHECK = load_script("paraview_check")  # opened: scripts/open_frames.py's lines; problems: what a reader missed
 OLDEST_VTK = ROOT / ".venv" / "oldest-vtk" / "bin" / "python"

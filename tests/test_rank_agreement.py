@@ -1,12 +1,18 @@
 """The same case on 1, 2 and 3 ranks gives the same particles, and a restart on
 any rank count continues the run as if it had never stopped."""
 
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
-from mpisph.io.frames import list_frames, read_frame
+from mpisph.io.frames import frame_path, list_frames, read_frame
+from mpisph.launch import mpirun_python
 from mpirun import mpisph
+
+pytestmark = pytest.mark.ranks  # tests/conftest.py
 
 # each runs >= 200 steps; the domain sizes set the tolerance 1e-10 * size
 CASES = {
@@ -108,51 +114,68 @@ def assert_same_particles(a, b, size):
         assert np.abs(a[name] - b[name]).max() <= 1e-10 * scale, name
 
 
+# the mu(I) incline: its first time step after a restart takes the viscosity stored in the frame;
+# the mu(I) column: its implicit kick's first guess extrapolates from the two accelerations in the frame;
+# the outermost normals: recomputed, not read from the frame (a restart takes the frame's parameters)
+RESTARTED = ("dam_break_2d", "taylor_green", "column_collapse_2d", "inclined_plane", "lube_collapse_2d",
+             "cube_failure_3d outermost_normals")
+
+
+def launch(tmp_path_factory, key):
+    """``key``'s case on 1, 2 and 3 ranks and, for the cases of RESTARTED, restarted from the 2-rank
+    run's middle frame on 1 and 3 ranks, in one launch: {1, 2, 3, ("restart", 1), ("restart", 3): out_dir}."""
+    base = tmp_path_factory.mktemp(key.replace(" ", "_"))
+    args, _ = CASES[key]
+    case = key.split()[0]
+    out, spec = {}, []
+    for ranks in (1, 2, 3):
+        out[ranks] = base / f"ranks{ranks}"
+        spec.append([ranks, [case, *args, "--out", str(out[ranks]), "--quiet"]])
+    if key in RESTARTED:
+        for ranks in (1, 3):
+            out["restart", ranks] = base / f"restart{ranks}"
+            spec.append([ranks, [case, "--restart", frame_path(out[2], 1), "--out", str(out["restart", ranks]),
+                                 "--quiet"]])
+    (base / "spec.json").write_text(json.dumps(spec))
+    r = mpirun_python([Path(__file__).parent / "runs_in_one_launch.py", base / "spec.json"], ranks=3, timeout=600)
+    assert r.returncode == 0, r.stderr
+    return out
+
+
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    """Each case on 1, 2 and 3 ranks: {case: {ranks: out_dir}}."""
-    out = {}
-    for key, (args, _) in CASES.items():
-        out[key] = {}
-        for ranks in (1, 2, 3):
-            d = tmp_path_factory.mktemp(f"{key.replace(' ', '_')}_{ranks}")
-            r = mpisph([key.split()[0], *args, "--out", d, "--quiet"], ranks=ranks, timeout=600)
-            assert r.returncode == 0, r.stderr
-            out[key][ranks] = d
-    return out
+    """``runs(key)``: the output directories of ``launch(key)``, launched when first asked for."""
+    done = {}
+
+    def of(key):
+        if key not in done:
+            done[key] = launch(tmp_path_factory, key)
+        return done[key]
+    return of
 
 
 @pytest.mark.parametrize("case", list(CASES))
 @pytest.mark.parametrize("ranks", [2, 3])
 def test_same_particles_on_any_rank_count(runs, case, ranks):
-    one = final_state(runs[case][1])
-    many = final_state(runs[case][ranks])
+    one = final_state(runs(case)[1])
+    many = final_state(runs(case)[ranks])
     assert_same_particles(one, many, CASES[case][1])
 
 
 @pytest.mark.parametrize("case", list(CASES))
 def test_bitwise_identical(runs, case):
     """Stronger than the 1e-10 requirement: canonical neighbour order gives equal bits."""
-    one = final_state(runs[case][1])
+    one = final_state(runs(case)[1])
     for ranks in (2, 3):
-        other = final_state(runs[case][ranks])
+        other = final_state(runs(case)[ranks])
         for name in (f for f in FIELDS if f in one):
             np.testing.assert_array_equal(one[name], other[name], err_msg=f"{case} {name} {ranks} ranks")
 
 
-# the mu(I) incline: its first time step after a restart takes the viscosity stored in the frame;
-# the mu(I) column: its implicit kick's first guess extrapolates from the two accelerations in the frame;
-# the outermost normals: recomputed, not read from the frame (a restart takes the frame's parameters)
-@pytest.mark.parametrize("case", ["dam_break_2d", "taylor_green", "column_collapse_2d", "inclined_plane",
-                                  "lube_collapse_2d", "cube_failure_3d outermost_normals"])
+@pytest.mark.parametrize("case", RESTARTED)
 @pytest.mark.parametrize("ranks", [1, 3])
-def test_restart_continues_the_run(runs, case, ranks, tmp_path):
-    uninterrupted = runs[case][2]
-    halfway = list_frames(uninterrupted)[1]
-    args, size = CASES[case]
-    r = mpisph([case.split()[0], "--restart", halfway, "--out", tmp_path, "--quiet"], ranks=ranks, timeout=600)
-    assert r.returncode == 0, r.stderr
-    assert_same_particles(final_state(uninterrupted), final_state(tmp_path), size)
+def test_restart_continues_the_run(runs, case, ranks):
+    assert_same_particles(final_state(runs(case)[2]), final_state(runs(case)["restart", ranks]), CASES[case][1])
 
 
 def test_the_cuts_follow_the_surge(tmp_path):
@@ -177,14 +200,14 @@ def test_load_balance_columns(runs, case):
     """diagnostics.csv's load-balance columns: one rank holds everything; on three, the fewest and
     most particles and pairs per rank bracket the mean, and the imbalance is max / mean - 1 of the
     pairs, which the rebalancing keeps near or under its threshold (0.1)."""
-    one = read_diagnostics(runs[case][1] / "diagnostics.csv")
+    one = read_diagnostics(runs(case)[1] / "diagnostics.csv")
     n, pairs = one["n"], one["rank_pairs_max"]
     np.testing.assert_array_equal(one["rank_particles_min"], n)
     np.testing.assert_array_equal(one["rank_particles_max"], n)
     np.testing.assert_array_equal(one["rank_pairs_min"], pairs)
     np.testing.assert_array_equal(one["imbalance"], 0.0)
     np.testing.assert_array_equal(one["rebalances"], 0.0)
-    three = read_diagnostics(runs[case][3] / "diagnostics.csv")
+    three = read_diagnostics(runs(case)[3] / "diagnostics.csv")
     assert np.all(three["rank_particles_min"] <= n / 3) and np.all(three["rank_particles_max"] >= n / 3)
     # the same configurations, so the same total of pairs: the mean per rank is a third of it
     mean = pairs / 3

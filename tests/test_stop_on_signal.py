@@ -20,6 +20,8 @@ from mpisph.io.frames import check_frame, list_frames, read_frame
 from mpisph.launch import MPI_ENV, ROOT
 from mpirun import mpisph, signal_when_running
 
+pytestmark = pytest.mark.ranks  # tests/conftest.py
+
 RUN = ["dam_break_2d", "--set", "dp=0.05", "--t-end", "50", "--output-interval", "10"]
 
 

@@ -18,11 +18,11 @@ from mpirun import mpisph
 CASE = str(Path(__file__).parent / "cases" / "incline_bed_force.py")
 
 
-@pytest.mark.parametrize("step", ["explicit", "implicit"])
-def test_bed_force_closes_the_momentum_balance_of_the_layer(tmp_path, step):
+@pytest.mark.parametrize("step, ranks", [("explicit", 1), pytest.param("implicit", 2, marks=pytest.mark.ranks)])
+def test_bed_force_closes_the_momentum_balance_of_the_layer(tmp_path, step, ranks):
     r = mpisph([CASE, "--set", "H=0.02", "dp=0.002", "columns=8", "m_0=0.2", f"viscous_step={step}",
                 "diagnostics_every=20", "--t-end", "0.3", "--output-interval", "0.3", "--out", tmp_path, "--quiet"],
-               ranks=2, timeout=600)
+               ranks=ranks, timeout=600)
     assert r.returncode == 0, r.stderr
     d = read_diagnostics(tmp_path / "diagnostics.csv")
     mass, g, theta = d["mass"][-1], 9.81, np.radians(25.0)

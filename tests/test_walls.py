@@ -13,7 +13,7 @@ from mpirun import mpisph
 
 
 def test_still_water_stays_hydrostatic(tmp_path):
-    r = mpisph(["hydrostatic_tank", "--t-end", "2", "--out", tmp_path, "--quiet"], ranks=2)
+    r = mpisph(["hydrostatic_tank", "--t-end", "2", "--out", tmp_path, "--quiet"])
     assert r.returncode == 0, r.stderr
     last = read_frame(list_frames(tmp_path)[-1])
     rho, g, depth = 1000.0, 9.81, 0.5
