@@ -164,7 +164,8 @@ class _BoxShell(LatticePoints):
         return x
 
     def window(self, axis, lo, hi):
-        index = self.lattice.window(axis, lo - self.excess[axis], hi)  # a superset: moves are outwards
+        # a superset: moves are outwards; the points inside the box are never generated
+        index = self.lattice.window(axis, lo - self.excess[axis], hi, hollow=[(0, n) for n in self.counts])
         x = self.placed(index)
         inside = (x[:, axis] >= lo) & (x[:, axis] < hi)
         return self.kept(index[inside], x[inside])
@@ -219,5 +220,5 @@ def depth_outside(lo, hi):
 def box_walls(lo, hi, dp, layers, open_sides=()):
     """The arrays (positions, inward unit normals) of ``walls_around``."""
     walls = walls_around(lo, hi, dp, layers, open_sides)
-    _within_memory([walls.size], dp, "the walls")
+    _within_memory([walls.estimate], dp, "the walls")
     return walls.everything()

@@ -83,10 +83,12 @@ class Lattice:
         """World positions (n, d) of the points with linear indices ``index``."""
         return _world(self.frame.origin, self.frame.matrix(), self.frame_coordinates(index))
 
-    def window(self, axis, lo, hi):
+    def window(self, axis, lo, hi, hollow=None):
         """Linear indices (ascending) of the points whose world coordinate along ``axis`` lies in
-        [lo, hi). Generated a lattice plane (first index) at a time, skipping the planes whose
-        range along ``axis`` cannot meet the window, so the memory is that of the answer."""
+        [lo, hi), leaving out those whose index tuple lies in the box ``hollow`` (a [start, stop)
+        per axis, in the indices of ``first`` and ``last``; None: none left out). Generated a
+        lattice plane (first index) at a time, skipping the planes whose range along ``axis``
+        cannot meet the window, so the time and memory are those of the answer's planes."""
         shape, dp = self.shape, self.dp
         if self.size == 0:
             return np.zeros(0, np.int64)
@@ -97,12 +99,19 @@ class Lattice:
         spread = sum(abs(slope[a]) * (shape[a] - 1) for a in range(1, len(shape)))
         slack = 1e-9 * (abs(origin[axis]) + np.abs(slope).sum() * max(shape) + 1.0)
         plane = np.arange(math.prod(shape[1:]), dtype=np.int64)
+        rim, hollow_planes = plane, (0, 0)
+        if hollow is not None:  # the hollow's planes hold only their points outside it
+            inside = np.ones(len(plane), bool)
+            for t, f, (a, b) in zip(np.unravel_index(plane, shape[1:]), self.first[1:], hollow[1:]):
+                inside &= (t + f >= a) & (t + f < b)
+            rim = plane[~inside]
+            hollow_planes = (hollow[0][0] - self.first[0], hollow[0][1] - self.first[0])
         u0 = (np.arange(shape[0]) + self.first[0] + 0.5) * dp
         start = origin[axis] + u0 * r[axis, 0] + sum((f + 0.5) * dp * r[axis, a]
                                                       for a, f in enumerate(self.first) if a > 0)
         out = []
         for i in np.nonzero((start + rest + spread >= lo - slack) & (start + rest < hi + slack))[0]:
-            index = i * len(plane) + plane
+            index = i * len(plane) + (rim if hollow_planes[0] <= i < hollow_planes[1] else plane)
             s = _world(origin, r, self.frame_coordinates(index), axes=(axis,))[:, 0]
             out.append(index[(s >= lo) & (s < hi)])
         return np.concatenate(out) if out else np.zeros(0, np.int64)

@@ -43,9 +43,14 @@ def test_a_tilted_lattice_cut_into_slabs_along_any_axis_is_the_lattice(axis):
     assert np.array_equal(y, x)
     whole = lattice.window(axis, -np.inf, np.inf)
     assert np.array_equal(whole, np.arange(lattice.size))
-    for lo, hi in [(-0.1, 0.3), (0.25, 0.25), (5.0, 6.0)]:
-        inside = np.nonzero((x[:, axis] >= lo) & (x[:, axis] < hi))[0]
-        assert np.array_equal(lattice.window(axis, lo, hi), inside)
+    tuples = np.column_stack(np.unravel_index(np.arange(lattice.size), lattice.shape)) + lattice.first
+    hollow = ((-1, 4), (1, 3), (4, 11))  # reaching the last index along the third axis
+    in_hollow = np.all([(tuples[:, a] >= h[0]) & (tuples[:, a] < h[1]) for a, h in enumerate(hollow)], axis=0)
+    assert 0 < in_hollow.sum() < lattice.size
+    for lo, hi in [(-0.1, 0.3), (0.25, 0.25), (5.0, 6.0), (-np.inf, np.inf)]:
+        inside = (x[:, axis] >= lo) & (x[:, axis] < hi)
+        assert np.array_equal(lattice.window(axis, lo, hi), np.nonzero(inside)[0])
+        assert np.array_equal(lattice.window(axis, lo, hi, hollow=hollow), np.nonzero(inside & ~in_hollow)[0])
 
 
 def test_the_block_and_walls_around_it_are_box_and_box_walls_in_any_slabs():
