@@ -53,7 +53,7 @@ def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
         return None
     first, last = np.flatnonzero(well)[[0, -1]]
     if first == 0 or last == points - 1 or not well[first:last + 1].all():
-        raise ValueError(f"mu(I) is not well-posed in one window inside [{lowest:g}, {highest:g}]")
+        raise ValueError(f"mu(I) is not well-posed in one window inside [{lowest:g}, {highest:g}] I_0")
     return _crossing(I[first - 1], I[first], m), _crossing(I[last], I[last + 1], m)
 
 

@@ -4,11 +4,12 @@ SPEC is a JSON file: a list of ``[ranks, argv]``, run in that order. Each run ta
 ``ranks`` ranks of the launch as its communicator, while the others wait for it without spinning.
 A small case's run is mostly the start-up of Python, numba's cache and MPI (about 2 s of a 2.4 s
 run of the 2D column on one rank), so a case's runs on 1, 2 and 3 ranks share one start-up.
-A run that does not end with status 0 ends the launch with its status."""
+A run that does not end with status 0 ends the launch with its status (1 for an exception)."""
 
 import json
 import sys
 import time
+import traceback
 
 from mpi4py import MPI
 
@@ -28,7 +29,12 @@ def run_all(spec, world):
             raise SystemExit(f"runs_in_one_launch: a run on {ranks} ranks in a launch of {world.size}")
         comm = world.Split(0 if world.rank < ranks else MPI.UNDEFINED, world.rank)
         if comm != MPI.COMM_NULL:
-            status = main(argv, comm)
+            try:
+                status = main(argv, comm)
+            except Exception:  # main raises on a 1-rank communicator: end the launch, not leave the rest waiting
+                traceback.print_exc()
+                sys.stderr.flush()
+                world.Abort(1)
             comm.Free()
             if status:
                 print(f"runs_in_one_launch: {' '.join(argv)} on {ranks} ranks ended with status {status}",
