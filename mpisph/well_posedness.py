@@ -22,6 +22,10 @@ Proc. R. Soc. A 473) show that compressibility can make the equations
 well-posed under conditions on the dilatancy law; whether Eq. 8 meets them is
 not established here. These functions tell in which range of I a flow runs,
 not how the discrete scheme behaves.
+
+partially_regularised_friction is Barker & Gray 2017's remedy below the window, kept to measure
+what it would do to a material (scripts/well_posedness.py --materials, docs/COLLAPSES.md); the
+solver's laws do not use it.
 """
 
 import math
@@ -29,7 +33,16 @@ import math
 import numpy as np
 
 from .particles import MOVING
-from .physics.mu_i_law import friction
+from .physics.mu_i_law import MuIParams, friction
+from .references import MU_I_MATERIALS
+
+
+def table_1_law(name, **changes):
+    """MuIParams of a material of 004_ Table 1 (references.MU_I_MATERIALS), with ``changes``; the
+    fields that well-posedness does not read (phi, rho_s0, K_t, tau_0, m_0) are placeholders."""
+    m = MU_I_MATERIALS[name]
+    mu_s, mu_2 = (math.tan(math.radians(m[k])) for k in ("mu_s_deg", "mu_2_deg"))
+    return MuIParams(mu_s, mu_2, m["I_0"], 0.0, 0.6, 0.5, 2500.0, m["d"], 1e-5, 100.0, 1.0)._replace(**changes)
 
 
 def ill_posedness(I, m):
@@ -38,7 +51,11 @@ def ill_posedness(I, m):
     (mu_2 - mu_s) I_0 / (I + I_s + I_0)^2."""
     I = np.asarray(I, dtype=float)
     mu = friction(I, m)
-    nu = I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / mu
+    return criterion(I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / mu, mu)
+
+
+def criterion(nu, mu):
+    """C of the module docstring from nu = I mu'/mu and mu."""
     return 4.0 * nu * nu - 4.0 * nu + mu * mu * (1.0 - 0.5 * nu) ** 2
 
 
@@ -54,19 +71,58 @@ def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
     first, last = np.flatnonzero(well)[[0, -1]]
     if first == 0 or last == points - 1 or not well[first:last + 1].all():
         raise ValueError(f"mu(I) is not well-posed in one window inside [{lowest:g}, {highest:g}] I_0")
-    return _crossing(I[first - 1], I[first], m), _crossing(I[last], I[last + 1], m)
+    well_posed = lambda x: ill_posedness(x, m) < 0.0
+    return _crossing(well_posed, I[first - 1], I[first]), _crossing(well_posed, I[last], I[last + 1])
 
 
-def _crossing(lo, hi, m):
-    """The I in (lo, hi) where C changes sign, by bisection in log I."""
-    sign_lo = ill_posedness(lo, m) < 0.0
+def _crossing(holds, lo, hi):
+    """The point in (lo, hi), both positive, where the predicate ``holds`` changes, by bisection in
+    the logarithm."""
+    at_lo = holds(lo)
     while hi - lo > 1e-10 * hi:
         mid = math.sqrt(lo * hi)
-        if (ill_posedness(mid, m) < 0.0) == sign_lo:
+        if holds(mid) == at_lo:
             lo = mid
         else:
             hi = mid
     return math.sqrt(lo * hi)
+
+
+def partially_regularised_friction(I, m, alpha):
+    """Barker & Gray 2017's partial regularisation of the law (their Sec. 6): below the lower end
+    I_1 of the window mu = sqrt(alpha / ln(A / I)) with A = I_1 exp(alpha / mu(I_1)^2), so that mu is
+    continuous at I_1; 004_'s law (friction) from I_1 up. The form is the one the public OpenFOAM
+    module alexjarosch/OpenFOAM-muI (muIreg) codes with the citation of the paper's Eq. 6.4; the
+    paper's body was not at hand. Written as mu^2 = mu_1^2 / (1 + (mu_1^2 / alpha) ln(I_1 / I)),
+    mu_1 = mu(I_1), the friction falls below I_1 and vanishes as I -> 0: the law loses its yield
+    stress. Its nu = I mu'/mu is mu^2 / (2 alpha)."""
+    I = np.asarray(I, dtype=float)
+    lower = well_posed_window(m)[0]
+    mu_1 = friction(lower, m)
+    below = mu_1 ** 2 / (1.0 + mu_1 ** 2 / alpha * np.log(lower / np.minimum(I, lower)))
+    return np.where(I < lower, np.sqrt(below), friction(I, m))
+
+
+def partial_regularisation_alphas(m):
+    """(alpha_lo, alpha_hi): the alphas for which partially_regularised_friction is well-posed at
+    every I below the window. With nu = mu^2 / (2 alpha) the criterion reads
+    nu (4 nu - 4 + 2 alpha (1 - nu / 2)^2) < 0, i.e. alpha < 2 (1 - nu) / (1 - nu / 2)^2, whose right
+    side falls as nu rises; nu is largest at I_1, so the condition at I_1 holds it at every I below.
+    Each end to a relative 1e-10 by bisection from a scan of (0, 2]."""
+    nu_times_alpha = 0.5 * friction(well_posed_window(m)[0], m) ** 2
+
+    def margin(alpha):  # > 0 where alpha is admissible
+        nu = nu_times_alpha / alpha
+        return 2.0 * (1.0 - nu) / (1.0 - 0.5 * nu) ** 2 - alpha if nu < 1.0 else -alpha
+
+    alphas = np.linspace(0.0, 2.0, 2001)[1:]  # margin < 0 at both ends
+    inside = np.array([margin(a) > 0.0 for a in alphas])
+    if not inside.any():
+        return None
+    first, last = np.flatnonzero(inside)[[0, -1]]
+    admissible = lambda alpha: margin(alpha) > 0.0
+    return (_crossing(admissible, alphas[first - 1], alphas[first]),
+            _crossing(admissible, alphas[last], alphas[last + 1]))
 
 
 def dissipation_rate(frame):

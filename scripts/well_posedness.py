@@ -1,6 +1,7 @@
 """How much of a mu(I) run flows where its friction law is ill-posed (mpisph/well_posedness.py).
 
     .venv/bin/python scripts/well_posedness.py RUN [RUN ...]
+    .venv/bin/python scripts/well_posedness.py --materials
 
 For each run (any mu(I) case: its material is built again from the frames' parameters): the window
 of inertial numbers (I_1, I_2) where the law is well-posed, and for each frame the grains' viscous
@@ -8,16 +9,25 @@ dissipation rate (sum of eta gamma_dot^2 m / rho), the share of it at I outside 
 inertial numbers below which a quarter, half and three quarters of it happens. The last line weighs
 the frames' shares by their dissipation over the run (trapezoids in time): the share of all the
 energy the run dissipated where the law is ill-posed.
+
+--materials prints, for each material of 004_ Table 1, its window, the alphas for which Barker & Gray
+2017's partial regularisation is well-posed below it, and the friction at low I of 004_'s law beside
+the regularised law's with the largest of those alphas (the nearest to 004_'s).
 """
 
 import argparse
+import math
 
 import numpy as np
 
 from mpisph.case import case_of_frame
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.physics.mu_i_law import friction
+from mpisph.references import MU_I_MATERIALS
 from mpisph.well_posedness import dissipation_rate, ill_posed_dissipation_share, ill_posed_energy_share, \
-    well_posed_window
+    partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
+
+LOW_I = (1e-2, 1e-3, 1e-4)
 
 
 def weighted_quantiles(values, weights, quantiles):
@@ -41,10 +51,32 @@ def run_table(run):
     return window, rows, ill_posed_energy_share(frames, window)
 
 
+def material_rows():
+    """A row per 004_ Table 1 material: name, I_0, window, (alpha_lo, alpha_hi), and at each of
+    LOW_I the friction of 004_'s law and of the partial regularisation with alpha_hi."""
+    rows = []
+    for name in MU_I_MATERIALS:
+        m = table_1_law(name)
+        alphas = partial_regularisation_alphas(m)
+        rows.append((name, m.I_0, well_posed_window(m), alphas,
+                     [(friction(I, m), float(partially_regularised_friction(I, m, alphas[1]))) for I in LOW_I]))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("runs", nargs="+")
-    for run in ap.parse_args().runs:
+    ap.add_argument("runs", nargs="*")
+    ap.add_argument("--materials", action="store_true")
+    a = ap.parse_args()
+    if a.materials:
+        print("| material (004_ Table 1) | I_0 | well-posed for | alpha | "
+              + " | ".join(f"mu at I = {I:g}: 004_ / regularised" for I in LOW_I) + " |")
+        print("|---" * (4 + len(LOW_I)) + "|")
+        for name, I_0, (lo, hi), (alpha_lo, alpha_hi), mus in material_rows():
+            print(f"| {name} | {I_0:g} | {lo:.3g} < I < {hi:.3g} | {alpha_lo:.3f}-{alpha_hi:.3f} | "
+                  + " | ".join(f"{ours:.3f} ({math.degrees(math.atan(ours)):.1f} deg) / {reg:.3f} "
+                               f"({math.degrees(math.atan(reg)):.1f} deg)" for ours, reg in mus) + " |")
+    for run in a.runs:
         window, rows, overall = run_table(run)
         where = f"well-posed for {window[0]:.3g} < I < {window[1]:.3g}" if window else "ill-posed at every I"
         print(f"{run}: mu(I) {where}")

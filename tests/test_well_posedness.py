@@ -11,23 +11,16 @@ import pytest
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
 from mpisph.physics.mu_i_law import MuIParams
-from mpisph.references import MU_I_MATERIALS
-from mpisph.well_posedness import ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
-    well_posed_window
-
-
-def law(name, I_0=None, I_s=0.0):
-    """MuIParams of a 004_ Table 1 material (the constants the window does not read are placeholders)."""
-    m = MU_I_MATERIALS[name]
-    mu_s, mu_2 = (math.tan(math.radians(m[k])) for k in ("mu_s_deg", "mu_2_deg"))
-    return MuIParams(mu_s, mu_2, m["I_0"] if I_0 is None else I_0, I_s, 0.6, 0.5, 2500.0, m["d"], 1e-5, 100.0, 1.0)
+from mpisph.physics.mu_i_law import friction
+from mpisph.well_posedness import criterion, ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
+    partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
 
 
 @pytest.mark.parametrize("I_s", [0.0, 0.01])
 def test_rate_independent_friction_is_ill_posed(I_s):
     """At I = 0 the law's slope drops out of nu = I mu'/mu, and C = mu(0)^2 > 0; with Eq. 18's shift
     mu(0) = mu_s + (mu_2 - mu_s) I_s / (I_s + I_0)."""
-    m = law("sand_0.4mm", I_s=I_s)
+    m = table_1_law("sand_0.4mm", I_s=I_s)
     mu_0 = m.mu_s + (m.mu_2 - m.mu_s) * I_s / (I_s + m.I_0)
     assert ill_posedness(0.0, m) == pytest.approx(mu_0 ** 2, rel=1e-14)
 
@@ -35,7 +28,7 @@ def test_rate_independent_friction_is_ill_posed(I_s):
 def test_at_i_0_the_criterion_takes_its_closed_form():
     """At I = I_0 (no shift) mu is the mean of mu_s and mu_2 and nu = (mu_2 - mu_s) / (4 mu); glass
     beads: C = -0.2148, inside the window."""
-    m = law("glass_beads")
+    m = table_1_law("glass_beads")
     mu = 0.5 * (m.mu_s + m.mu_2)
     nu = (m.mu_2 - m.mu_s) / (4.0 * mu)
     expected = 4 * nu ** 2 - 4 * nu + mu ** 2 * (1 - nu / 2) ** 2
@@ -48,7 +41,7 @@ def test_at_i_0_the_criterion_takes_its_closed_form():
 def test_each_material_is_well_posed_in_one_window(name, window):
     """The window's ends are where C changes sign; C < 0 inside, > 0 a little outside on either
     side; the ends to four digits."""
-    m = law(name)
+    m = table_1_law(name)
     lo, hi = well_posed_window(m)
     assert (lo, hi) == pytest.approx(window, rel=1e-3)
     inside = np.geomspace(lo * 1.001, hi * 0.999, 50)
@@ -58,17 +51,17 @@ def test_each_material_is_well_posed_in_one_window(name, window):
 
 def test_the_window_scales_with_i_0():
     """C depends on I only through I / I_0 (without Eq. 18's shift)."""
-    lo, hi = well_posed_window(law("sand_0.4mm"))
-    lo2, hi2 = well_posed_window(law("sand_0.4mm", I_0=2 * 2.65))
+    lo, hi = well_posed_window(table_1_law("sand_0.4mm"))
+    lo2, hi2 = well_posed_window(table_1_law("sand_0.4mm", I_0=2 * 2.65))
     assert (lo2, hi2) == pytest.approx((2 * lo, 2 * hi), rel=1e-8)
     # the scan follows I_0 far from the materials' values
     for scale in (1e-10, 1e4):
-        assert well_posed_window(law("sand_0.4mm", I_0=scale * 2.65)) == pytest.approx((scale * lo, scale * hi),
+        assert well_posed_window(table_1_law("sand_0.4mm", I_0=scale * 2.65)) == pytest.approx((scale * lo, scale * hi),
                                                                                        rel=1e-8)
 
 
 def test_a_nearly_rate_independent_law_has_no_window():
-    m = law("sand_0.4mm")._replace(mu_2=law("sand_0.4mm").mu_s * 1.01)
+    m = table_1_law("sand_0.4mm")._replace(mu_2=table_1_law("sand_0.4mm").mu_s * 1.01)
     assert well_posed_window(m) is None
 
 
@@ -76,9 +69,53 @@ def test_the_incline_is_inside_its_window_and_the_columns_are_below_theirs():
     """The glass beads' uniform flow at 25 degrees, I_u = 0.133 (004_ Sec. 5.1), lies inside their
     window; the sand columns' window starts above I = 0.4, where their collapses dissipate nearly all
     their energy at I < 0.04 (scripts/well_posedness.py, docs/COLLAPSES.md)."""
-    lo, hi = well_posed_window(law("glass_beads"))
+    lo, hi = well_posed_window(table_1_law("glass_beads"))
     assert lo < 0.1330 < hi
-    assert well_posed_window(law("sand_0.4mm"))[0] > 0.4
+    assert well_posed_window(table_1_law("sand_0.4mm"))[0] > 0.4
+
+
+def log_slope(f, I, step=1e-6):
+    """nu = d ln mu / d ln I of the function f by central differences in ln I."""
+    return (np.log(f(I * math.exp(step))) - np.log(f(I * math.exp(-step)))) / (2.0 * step)
+
+
+@pytest.mark.parametrize("name", ["glass_beads", "sand_0.8mm", "sand_0.4mm"])
+def test_the_partial_regularisation_is_well_posed_below_the_window_for_its_alphas(name):
+    """Barker & Gray 2017's branch below I_1: continuous at I_1, sqrt(alpha / ln(A / I)) with
+    A = I_1 exp(alpha / mu(I_1)^2), nu = mu^2 / (2 alpha), and C < 0 from I_1 down to 1e-12 I_1 for
+    alphas inside partial_regularisation_alphas, C > 0 just below I_1 for alphas 1 % outside. nu is
+    taken by differences, not from the closed form the alphas are computed with."""
+    m = table_1_law(name)
+    lower = well_posed_window(m)[0]
+    lo, hi = partial_regularisation_alphas(m)
+    I = lower * np.geomspace(1e-12, 0.999, 200)
+    for alpha in (1.01 * lo, 0.5 * (lo + hi), 0.99 * hi):
+        def mu(x):
+            return partially_regularised_friction(x, m, alpha)
+
+        a = lower * math.exp(alpha / friction(lower, m) ** 2)
+        assert mu(I) == pytest.approx(np.sqrt(alpha / np.log(a / I)), rel=1e-12)
+        assert mu(lower * (1 - 1e-9)) == pytest.approx(friction(lower, m), rel=1e-8)
+        nu = log_slope(mu, I)
+        assert nu == pytest.approx(mu(I) ** 2 / (2.0 * alpha), rel=1e-6)
+        assert (criterion(nu, mu(I)) < 0.0).all()
+    for alpha in (0.99 * lo, 1.01 * hi):
+        just_below = lower * 0.999
+        mu = partially_regularised_friction(just_below, m, alpha)
+        assert criterion(log_slope(lambda x: partially_regularised_friction(x, m, alpha), just_below), mu) > 0.0
+    # above I_1 the law is 004_'s
+    assert partially_regularised_friction(2.0 * lower, m, hi) == friction(2.0 * lower, m)
+
+
+def test_the_partial_regularisation_lowers_the_sands_friction_where_the_columns_flow():
+    """With the largest admissible alpha (the friction nearest 004_'s below I_1), the 0.32 mm sand's
+    friction at I = 1e-3, where its collapses dissipate, falls from 0.589 (30.5 degrees) to 0.439
+    (23.7 degrees); the glass beads', whose window starts at I = 0.019, from 0.383 to 0.359."""
+    for name, ours, regularised in (("sand_0.4mm", 0.5893, 0.4386), ("glass_beads", 0.3828, 0.3588)):
+        m = table_1_law(name)
+        assert friction(1e-3, m) == pytest.approx(ours, abs=1e-4)
+        alpha = partial_regularisation_alphas(m)[1]
+        assert float(partially_regularised_friction(1e-3, m, alpha)) == pytest.approx(regularised, abs=1e-4)
 
 
 def test_the_dissipation_share_outside_the_window():
