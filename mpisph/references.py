@@ -37,6 +37,25 @@ def taylor_green_energy_rate(Re):
     return -16.0 * np.pi**2 / Re
 
 
+# The kinetic energy of the authors' own Taylor-Green run (SPHinXsys, Xiangyu-Hu/SPHinXsys, its
+# regression data tests/2d_examples/test_2d_taylor_green/regression_test_tool/
+# WaterBody_TotalKineticEnergy_Run_0_result.xml at commit 4c3c916dcffccb3eca2ad392e5790528c3380f19),
+# written every 0.1 s from t = 0 to 5 (each at the first advection step past it), to 6 digits. The
+# test at that commit: unit square, rho0 = 1, U = 1, c0 = 10, Re = 100, a perfect 100 x 100 lattice
+# (ParticleGeneratorLattice, no reload), density by summation, the transport-velocity correction
+# without a limiter on every particle once per advection step, 001_'s dual time stepping.
+SPHINXSYS_TAYLOR_GREEN_DT = 0.1
+SPHINXSYS_TAYLOR_GREEN_KE = np.array([
+    0.25, 0.206463, 0.104494, 0.0811429, 0.0678611, 0.0579921, 0.0483675, 0.0409469,
+    0.0335027, 0.0317613, 0.023462, 0.0198826, 0.0168425, 0.0148062, 0.012009, 0.0103007,
+    0.00884408, 0.00766765, 0.00662638, 0.00547755, 0.00469251, 0.0040193, 0.00344552, 0.00329152,
+    0.00252773, 0.00237109, 0.00192775, 0.00183381, 0.00162712, 0.00133348, 0.00100603, 0.00122432,
+    0.000755985, 0.000893024, 0.00056172, 0.000643051, 0.000442576, 0.00047645, 0.000521788, 0.000288762,
+    0.000445653, 0.000357234, 0.000198875, 0.000375696, 0.000180123, 0.000149044, 0.000345227, 0.00011609,
+    0.000124743, 0.00047719, 9.25385e-05,
+])
+
+
 # Ghia, Ghia & Shin (1982), Re = 100: u on the vertical centre line, v on the horizontal one.
 GHIA_Y = np.array([1, .9766, .9688, .9609, .9531, .8516, .7344, .6172, .5, .4531, .2813, .1719,
                    .1016, .0703, .0625, .0547, 0])
