@@ -240,7 +240,8 @@ def taylor_green(ranks):
     t_sx = references.SPHINXSYS_TAYLOR_GREEN_DT * np.arange(len(ke_sx))
     analytic_sx = ke_sx[0] * np.exp(ref * t_sx)
     late = t_sx >= 1.0
-    for span, rate in (("[0, 5]", measure.decay_rate(t_sx, ke_sx)), ("[1, 5]", measure.decay_rate(t_sx[late], ke_sx[late]))):
+    for span, rate in (("[0, 5]", measure.decay_rate(t_sx, ke_sx)),
+                       ("[1, 5]", measure.decay_rate(t_sx[late], ke_sx[late]))):
         rows.append((f"KE decay rate over {span}, the authors' code (SPHinXsys: 100 x 100, TVF without a limiter, "
                      f"from a perfect lattice)", f"{rate:.4f}", f"{ref:.4f}", f"{100 * (rate / ref - 1):+.1f}%", "-"))
     early = np.array([0.1, 0.2, 0.3, 0.5, 1.0])
@@ -282,8 +283,8 @@ def taylor_green(ranks):
             "own code loses the energy alike: SPHinXsys's regression data for its Taylor-Green test (the same "
             "square, c0, Re, kernel and stepping, a perfect 100 x 100 lattice, the correction without a limiter; "
             f"references.SPHINXSYS_TAYLOR_GREEN_KE, black dots) fall to {authors_early[1]:.2f} of the analytic "
-            f"energy by t = 0.2 and {authors_early[4]:.2f} by t = 1, within {np.abs(ours_early - authors_early).max():.2f} of mpisph's `tvf` from the "
-            "same lattice at every time of the row above; no run of SPHinXsys's test from a lattice with 001_'s "
+            f"energy by t = 0.2 and {authors_early[4]:.2f} by t = 1, within "
+            f"{np.abs(ours_early - authors_early).max():.3f} of mpisph's `tvf` from the same lattice at every time of the row above; no run of SPHinXsys's test from a lattice with 001_'s "
             "limiter is stored.")
     return "Taylor-Green vortex (Re = 100, to t = 5)", "; ".join(cmds), rows, save(fig, "taylor_green.png"), note
 
