@@ -284,8 +284,8 @@ def taylor_green(ranks):
             "square, c0, Re, kernel and stepping, a perfect 100 x 100 lattice, the correction without a limiter; "
             f"references.SPHINXSYS_TAYLOR_GREEN_KE, black dots) fall to {authors_early[1]:.2f} of the analytic "
             f"energy by t = 0.2 and {authors_early[4]:.2f} by t = 1, within "
-            f"{np.abs(ours_early - authors_early).max():.3f} of mpisph's `tvf` from the same lattice at every time of the row above; no run of SPHinXsys's test from a lattice with 001_'s "
-            "limiter is stored.")
+            f"{np.abs(ours_early - authors_early).max():.3f} of mpisph's `tvf` from the same lattice at every "
+            "time of the row above; no run of SPHinXsys's test from a lattice with 001_'s limiter is stored.")
     return "Taylor-Green vortex (Re = 100, to t = 5)", "; ".join(cmds), rows, save(fig, "taylor_green.png"), note
 
 
