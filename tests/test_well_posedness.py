@@ -10,7 +10,6 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
-from mpisph.physics.mu_i_law import MuIParams
 from mpisph.physics.mu_i_law import friction
 from mpisph.well_posedness import criterion, ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
     partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
@@ -56,8 +55,8 @@ def test_the_window_scales_with_i_0():
     assert (lo2, hi2) == pytest.approx((2 * lo, 2 * hi), rel=1e-8)
     # the scan follows I_0 far from the materials' values
     for scale in (1e-10, 1e4):
-        assert well_posed_window(table_1_law("sand_0.4mm", I_0=scale * 2.65)) == pytest.approx((scale * lo, scale * hi),
-                                                                                       rel=1e-8)
+        window = well_posed_window(table_1_law("sand_0.4mm", I_0=scale * 2.65))
+        assert window == pytest.approx((scale * lo, scale * hi), rel=1e-8)
 
 
 def test_a_nearly_rate_independent_law_has_no_window():
