@@ -107,20 +107,15 @@ def partial_regularisation_alphas(m):
     """(alpha_lo, alpha_hi): the alphas for which partially_regularised_friction is well-posed at
     every I below the window. With nu = mu^2 / (2 alpha) the criterion reads
     nu (4 nu - 4 + 2 alpha (1 - nu / 2)^2) < 0, i.e. alpha < 2 (1 - nu) / (1 - nu / 2)^2, whose right
-    side falls as nu rises; nu is largest at I_1, so the condition at I_1 holds it at every I below.
+    side falls as nu rises; nu is largest at I_1, so the criterion at I_1 holds it at every I below.
     Each end to a relative 1e-10 by bisection from a scan of (0, 2]."""
-    nu_times_alpha = 0.5 * friction(well_posed_window(m)[0], m) ** 2
-
-    def margin(alpha):  # > 0 where alpha is admissible
-        nu = nu_times_alpha / alpha
-        return 2.0 * (1.0 - nu) / (1.0 - 0.5 * nu) ** 2 - alpha if nu < 1.0 else -alpha
-
-    alphas = np.linspace(0.0, 2.0, 2001)[1:]  # margin < 0 at both ends
-    inside = np.array([margin(a) > 0.0 for a in alphas])
+    mu_1 = friction(well_posed_window(m)[0], m)
+    admissible = lambda alpha: criterion(0.5 * mu_1 ** 2 / alpha, mu_1) < 0.0
+    alphas = np.linspace(0.0, 2.0, 2001)[1:]  # inadmissible at both ends
+    inside = np.array([admissible(a) for a in alphas])
     if not inside.any():
         return None
     first, last = np.flatnonzero(inside)[[0, -1]]
-    admissible = lambda alpha: margin(alpha) > 0.0
     return (_crossing(admissible, alphas[first - 1], alphas[first]),
             _crossing(admissible, alphas[last], alphas[last + 1]))
 
