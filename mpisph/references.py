@@ -225,8 +225,9 @@ def inclined_plane_pressure(material, theta_deg, H, g, z):
 # d = 0.32 mm, sand of Table 1's third column. Columns: id: (a, H_0 [m], K_t [1/Pa], tau_0 [Pa], m_0 [s],
 # eta_max [Pa s], N, dp [m], h [m]). K_t as printed equals 1 / (rho_s0 c) with c = 10 sqrt(g H_0) to
 # within 1.5 % (row 6 prints 2.2e-6 where that gives 2.27e-5), which has the units of m^2 s/kg, not
-# 1/Pa; tau_0 equals mu_s phi_max rho_s0 g H_0 within 1.2 % (6 % in row 1). The cases take K_t from the
-# text instead: Mach 0.1 with U = sqrt(g H_0).
+# 1/Pa; tau_0 equals mu_s phi_max rho_s0 g H_0 within 1.2 % (6 % in row 1); eta_max is Eq. 53's at the
+# printed tau_0 and an m_0 that the table rounds to one decimal (tests/test_references.py). The cases
+# take K_t from the text instead: Mach 0.1 with U = sqrt(g H_0).
 LUBE_TABLE_3 = {
     1: (0.19, 0.0185, 9.0e-5, 177.0, 1.2, 215.0, 2500, 1.20e-3, 1.56e-3),
     2: (0.55, 0.0535, 5.3e-5, 483.0, 1.4, 684.0, 2200, 2.20e-3, 2.86e-3),
