@@ -1,4 +1,4 @@
-"""Still water in a closed tank: the pressure stays hydrostatic and the water at rest (wall check)."""
+"""Still water in a tank open at the top: the pressure stays hydrostatic and the water at rest (wall check)."""
 
 import numpy as np
 

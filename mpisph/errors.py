@@ -10,18 +10,8 @@ class InputError(Exception):
 
 
 class BlowUp(Exception):
-    """The simulation produced a non-finite value or lost a particle.
-
-    Carries where it happened so the message names step, time, rank and
-    particle id (rank and gid None when no one particle is to blame).
-    """
-
-    def __init__(self, message, *, step, time, rank=None, gid=None):
-        super().__init__(message)
-        self.step = step
-        self.time = time
-        self.rank = rank
-        self.gid = gid
+    """The simulation produced a non-finite value or lost a particle; its message names the step,
+    the time and, when one particle is to blame, its rank and id."""
 
 
 class NoConvergence(Exception):
@@ -36,7 +26,4 @@ class Stopped(Exception):
 
     def __init__(self, signal_name, *, step, time, frame):
         super().__init__(f"stopped by {signal_name} at step {step}, t = {time:.6g} s")
-        self.signal_name = signal_name
-        self.step = step
-        self.time = time
         self.frame = frame

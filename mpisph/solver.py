@@ -149,8 +149,7 @@ class Simulation:
                 gid, what, pos = rep
                 self._write_unscheduled_frame()
                 raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {what} "
-                             f"(rank {rank}, particle {gid}, at {pos}); last frame written",
-                             step=self.step, time=self.t, rank=rank, gid=gid)
+                             f"(rank {rank}, particle {gid}, at {pos}); last frame written")
 
     def _wrap_periodic(self):
         lo, hi = self.case.domain
@@ -193,8 +192,8 @@ class Simulation:
                         self.parts.integrator.step(self.ctx, dt)
                     except NoConvergence as e:
                         self._write_unscheduled_frame()
-                        raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {e}; last frame written",
-                                     step=self.step, time=self.t) from None
+                        raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {e}; "
+                                     "last frame written") from None
                 self.step += 1
                 self.t = t_stop if last else self.t + dt
                 self.dt = dt

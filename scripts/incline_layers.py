@@ -164,7 +164,7 @@ def traction_table(frames, p):
     """Rows (plane height, then for the shear and for the normal traction on the part above each plane
     between layers: that of the pressure pairs, of the viscous pairs and of the momentum carried
     across, each over the weight's component along the slope, then normal to it)."""
-    dp, theta, g, length = p["dp"], math.radians(p["theta"]), p["g"], p["columns"] * p["dp"]
+    dp, theta, length = p["dp"], math.radians(p["theta"]), p["columns"] * p["dp"]
     kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
     planes = np.arange(1, int(p["H"] / dp)) * dp
     sums = np.zeros((len(planes), 6))

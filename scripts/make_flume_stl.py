@@ -58,7 +58,7 @@ def quad(a, b, c, d, towards):
 def side_outlines():
     """(chute, run-out) side-wall outlines in the x-z plane: the chute's floor, the foot, the corner
     above the foot on the bisector of the angle there, and the chute's top end at wall height."""
-    along, _, up = slope_axes()
+    _, _, up = slope_axes()
     top = chute_top()
     corner = np.array([SIDE_HEIGHT * np.tan(np.radians(THETA) / 2.0), 0.0, SIDE_HEIGHT])
     chute = [top, np.zeros(3), corner, top + SIDE_HEIGHT * up]

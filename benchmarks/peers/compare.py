@@ -39,8 +39,8 @@ def is_busy(r):
 def parse_mpisph(stdout):
     """Solver-loop wall time, steps, particles and rate from mpisph's closing lines."""
     wall = float(grab(r"^timing: wall ([\d.eE+-]+) s", stdout, "mpisph 'timing: wall' line"))
-    rate, ranks, particles, steps = grab(
-        r"^throughput: ([\d.eE+-]+) particle-steps/s/core on (\d+) rank\(s\), (\d+) particles, (\d+) steps",
+    rate, particles, steps = grab(  # the rank count comes from the runs' table
+        r"^throughput: ([\d.eE+-]+) particle-steps/s/core on \d+ rank\(s\), (\d+) particles, (\d+) steps",
         stdout, "mpisph 'throughput:' line")
     t_end = float(grab(r"^mpisph: done at t = ([\d.eE+-]+) s", stdout, "mpisph 'done at t' line"))
     return dict(loop=wall, steps=int(steps), fluid=int(particles), total=None,
