@@ -1520,8 +1520,9 @@ def lube_collapse_3d_convergence_well_posed(ranks):
                                                     "lube_collapse_3d_convergence_well_posed.png", ", I_0 = 0.05")
     window = study[0]["window"]
     note = (f"{text} Not the sand: its I_0 = 2.65 becomes 0.05, which moves the window where the law is well-posed "
-            f"to {window[0]:.3g} < I < {window[1]:.3g}, over the inertial numbers of a collapse (docs/COLLAPSES.md, "
-            "'Why the runouts do not converge'), and every other setting is the sand's and the case's. Its runout is "
+            f"to {window[0]:.3g} < I < {window[1]:.3g}, among the inertial numbers of a collapse (the last row: the "
+            "share of the dissipation outside it; docs/COLLAPSES.md, 'Why the runouts do not converge'), and every "
+            "other setting is the sand's and the case's. Its runout is "
             "not Lube's (the friction at a given I is larger); the section asks only whether the 3D discretisation "
             "converges when the law it discretises is well-posed, beside the sand's study above.")
     return (f"Resolution study of the axisymmetric collapse a = {STUDY_3D[0]:g} in 3D with a well-posed mu(I) "
