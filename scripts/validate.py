@@ -1505,14 +1505,14 @@ def lube_collapse_3d_convergence(ranks):
             study[-1]["cmd"], rows, image, text + ("" if converged else unconverged))
 
 
-# the same column with the friction law's I_0 lowered until the law is well-posed where the column flows
-# (docs/COLLAPSES.md: in the plane its runout moved by 0.6 % at its last halving of the spacing)
+# the same column with the friction law's I_0 lowered until the law is well-posed where about half of the
+# column's dissipation happens (docs/COLLAPSES.md: in the plane its runout moved by 0.6 % at its last halving)
 WELL_POSED_STUDY_3D = (("I_0=0.05",), (8, 11, 14, 16, 20))
 
 
 def lube_collapse_3d_convergence_well_posed(ranks):
     """The column of lube_collapse_3d_convergence with I_0 = 0.05 in place of the sand's 2.65: a law that is
-    well-posed (Barker et al. 2015) over the inertial numbers where the column flows, as the test of
+    well-posed (Barker et al. 2015) where about half of the column's dissipation happens, as the test of
     docs/COLLAPSES.md ran in the plane; converged, as issue 14 asks of the sand, when the last refinement
     moves the runout by at most 5 %."""
     variant, layers = WELL_POSED_STUDY_3D
