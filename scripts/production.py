@@ -37,7 +37,7 @@ from mpisph.soil import drucker_prager  # noqa: E402
 
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
 from clustered import CLASSES, beside_an_edge, shifted_on_the_surface  # noqa: E402  (this directory)
-from validate import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
+from validation.page import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"

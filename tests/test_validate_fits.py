@@ -1,6 +1,7 @@
-"""scripts/validate.py's planar fits: the low-a slope and high-a exponent of Lube's laws, and their
-means over the step sequences that its assertions take (docs/COLLAPSES.md, 'Round-off and the
-fitted exponent')."""
+"""scripts/validate.py's planar fits (scripts/validation/lube_planar.py): the low-a slope and high-a
+exponent of Lube's laws, and their means over the step sequences that its assertions take
+(docs/COLLAPSES.md, 'Round-off and the fitted exponent'); the measures of a deposit and of the
+clustered particles UTVF leaves in place."""
 
 import numpy as np
 import pytest
@@ -9,8 +10,12 @@ from repo_script import load_script
 
 
 @pytest.fixture(scope="module")
-def validate():
-    return load_script("validate")
+def validation():
+    """The package of validate.py's sections, imported as validate.py imports it."""
+    load_script("validate")
+    import validation
+
+    return validation
 
 
 def lube(a, scale=1.0):
@@ -18,14 +23,14 @@ def lube(a, scale=1.0):
     return scale * np.where(a <= 1.0, 1.2 * a, 1.9 * a ** (2 / 3))
 
 
-def test_slope_and_exponent_of_the_laws(validate):
+def test_slope_and_exponent_of_the_laws(validation):
     a = np.array([0.5, 1.0, 2.0, 4.0, 6.0])
-    slope, exponent = validate._slope_and_exponent(a, lube(a))
+    slope, exponent = validation.lube_planar._slope_and_exponent(a, lube(a))
     assert slope == pytest.approx(1.2, rel=1e-12)
     assert exponent == pytest.approx(2 / 3, rel=1e-12)
 
 
-def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monkeypatch):
+def test_fits_are_asserted_on_their_means_over_the_step_sequences(validation, monkeypatch):
     """Runs whose a = 6 runout is 10 % long in half of the sequences: one sequence's exponent is
     0.90 (out of 0.67 +- 0.1), the mean over the six 0.78, also out, with its spread; the slope
     meets 1.2 +- 0.25 in every sequence. The first sequence's runs are the ones passed in."""
@@ -35,9 +40,9 @@ def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monk
         factor = scale[n_frames] if a == 6.0 else 1.0
         return {"a": a, "ratio": float(lube(np.array(a), factor))}
 
-    monkeypatch.setattr(validate, "_collapse", collapse)
+    monkeypatch.setattr(validation.lube_planar, "collapse", collapse)
     first = [{"a": a, "ratio": float(lube(np.array(a), 1.1 if a == 6.0 else 1.0))} for a in (0.5, 1.0, 2.0, 4.0, 6.0)]
-    slope_row, exponent_row = validate._fit_spread("X: ", (), first, 0.0972, 0.00486, 1)
+    slope_row, exponent_row = validation.lube_planar._fit_spread("X: ", (), first, 0.0972, 0.00486, 1)
     exponents = [2 / 3 + np.log(s) / np.log(1.5) for s in (1.1, 1.0, 1.1, 1.0, 1.1, 1.0)]
     assert slope_row[1].startswith("1.20; 0.00") and slope_row[-1]
     mean = np.mean(exponents)
@@ -46,7 +51,7 @@ def test_fits_are_asserted_on_their_means_over_the_step_sequences(validate, monk
     assert exponent_row[-1] is False and exponent_row[0].startswith("X: high-a exponent, mean over 6")
 
 
-def test_centre_and_farthest_grain_of_a_deposit(validate):
+def test_centre_and_farthest_grain_of_a_deposit(validation):
     """A hand-built axisymmetric deposit: a column of radius 0.1 m and height 0.05 m whose grains
     within 0.03 m of the axis top out at 0.04 m (the top sunk to 0.8 H_0 once the grain's dp/2 is
     added, dp = 0.01 m) and whose farthest grain sits at 0.195 m from the axis."""
@@ -55,14 +60,14 @@ def test_centre_and_farthest_grain_of_a_deposit(validate):
                   [0.05, 0.0, 0.075],  # higher, but 0.05 m out
                   [0.0, -0.195, 0.005]])  # the farthest grain
     r = {"last": {"x": x}, "radial": True, "dp": dp, "length": 0.1, "H0": 0.05}
-    assert validate._centre(r) == pytest.approx(0.8, rel=1e-12)
-    assert validate._farthest(r) == pytest.approx(1.0, rel=1e-12)
+    assert validation.collapses.centre(r) == pytest.approx(0.8, rel=1e-12)
+    assert validation.collapses.farthest(r) == pytest.approx(1.0, rel=1e-12)
     planar = {**r, "radial": False}  # along x only: the grain at y = 0.025 counts, the one at x = 0.05 does not
-    assert validate._centre(planar) == pytest.approx(0.8, rel=1e-12)
-    assert validate._farthest(planar) == pytest.approx((0.05 + 0.005 - 0.1) / 0.1, rel=1e-12)
+    assert validation.collapses.centre(planar) == pytest.approx(0.8, rel=1e-12)
+    assert validation.collapses.farthest(planar) == pytest.approx((0.05 + 0.005 - 0.1) / 0.1, rel=1e-12)
 
 
-def test_clustered_particles_that_utvf_leaves_in_place(validate):
+def test_clustered_particles_that_utvf_leaves_in_place(validation):
     """A hand-built 2D frame of three clustered pairs (each nearer than dp/2) among spread particles:
     one pair outermost with div r below 0.6 d (Eq. 37 leaves it), one splashed (Sec. 3.3 leaves it),
     one near-surface with div r above (Eq. 37 shifts it): six clustered, four left in place."""
@@ -82,4 +87,4 @@ def test_clustered_particles_that_utvf_leaves_in_place(validate):
     classes[104:106], div_r[104:106] = surface.NEAR_SURFACE, 1.5
     frame = {"x": x, "kind": kind, "gid": np.arange(n), "mass": np.full(n, dp * dp), "rho": np.ones(n),
              "surface": classes, "div_r": div_r, "params": {"dp": dp}}
-    assert validate._unshifted_share(frame) == (6, 4)
+    assert validation.fluids._unshifted_share(frame) == (6, 4)

@@ -1,6 +1,6 @@
-"""scripts/validate.py --reuse: a finished run is read again only for the same command, rank count
-and committed solver code (mpisph/ and cases/), so a long validation can be resumed without
-mixing in runs of other code."""
+"""scripts/validate.py --reuse (scripts/validation/runs.py): a finished run is read again only for
+the same command, rank count and committed solver code (mpisph/ and cases/), so a long validation
+can be resumed without mixing in runs of other code."""
 
 import subprocess
 from pathlib import Path
@@ -14,13 +14,17 @@ BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"
 
 
 @pytest.fixture
-def validate(tmp_path, monkeypatch):
-    module = load_script("validate")
-    monkeypatch.setattr(module, "RUNS", tmp_path)
-    return module
+def runs(tmp_path, monkeypatch):
+    """validate.py's runs module, writing its runs under ``tmp_path``, --reuse off."""
+    load_script("validate")
+    from validation import runs
+
+    monkeypatch.setattr(runs, "RUNS", tmp_path)
+    monkeypatch.setattr(runs, "REUSE", False)
+    return runs
 
 
-def test_code_version_follows_the_committed_solver_code(validate, tmp_path, monkeypatch):
+def test_code_version_follows_the_committed_solver_code(runs, tmp_path, monkeypatch):
     """A tree of its own: the version is None while mpisph/ or cases/ has uncommitted changes, and
     a commit there gives a new one; a change elsewhere leaves it."""
     repo = tmp_path / "repo"
@@ -34,36 +38,36 @@ def test_code_version_follows_the_committed_solver_code(validate, tmp_path, monk
 
     subprocess.run(["git", "init", "-q"], cwd=repo, check=True)
     commit()
-    monkeypatch.setattr(validate, "ROOT", repo)
-    first = validate.code_version()
+    monkeypatch.setattr(runs, "ROOT", repo)
+    first = runs.code_version()
     assert first is not None and len(first) == 2
     (repo / "docs" / "a.py").write_text("x = 2\n")
     commit()
-    assert validate.code_version() == first
+    assert runs.code_version() == first
     (repo / "cases" / "a.py").write_text("x = 2\n")
-    assert validate.code_version() is None
+    assert runs.code_version() is None
     commit()
-    second = validate.code_version()
+    second = runs.code_version()
     assert second is not None and second != first and second[0] == first[0]
 
 
-def test_reuse_reads_only_the_same_command(validate, tmp_path, capsys):
-    if validate.code_version() is None:
+def test_reuse_reads_only_the_same_command(runs, tmp_path, capsys):
+    if runs.code_version() is None:
         pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
-    frames, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    frames, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     first = (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns
-    validate.REUSE = True
-    again, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    runs.REUSE = True
+    again, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     assert "reusing" in capsys.readouterr().out
     assert (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns == first
     assert [f["t"] for f in again] == [f["t"] for f in frames]
     other = [*BEAM[:-1], "0.002"]  # another output interval: another command, run again
-    validate.run("beam", "oscillating_beam", other, 1)
+    runs.run("beam", "oscillating_beam", other, 1)
     assert "reusing" not in capsys.readouterr().out
     assert (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns != first
 
 
-def test_reuse_continues_an_interrupted_run_to_the_same_bits(validate, tmp_path, capsys):
+def test_reuse_continues_an_interrupted_run_to_the_same_bits(runs, tmp_path, capsys):
     """A run whose partial stamp matches (interrupted: no final stamp, its last frames missing)
     continues from its last frame and ends with the frames of the uninterrupted run, bit for bit."""
     import json
@@ -72,20 +76,20 @@ def test_reuse_continues_an_interrupted_run_to_the_same_bits(validate, tmp_path,
 
     from mpisph.io.frames import list_frames
 
-    if validate.code_version() is None:
+    if runs.code_version() is None:
         pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
-    frames, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    frames, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     out = tmp_path / "beam"
-    stamp = json.loads((out / validate.STAMP).read_text())
+    stamp = json.loads((out / runs.STAMP).read_text())
     del stamp["returncode"]
-    (out / validate.STAMP).unlink()
-    (out / validate.PARTIAL_STAMP).write_text(json.dumps(stamp))
+    (out / runs.STAMP).unlink()
+    (out / runs.PARTIAL_STAMP).write_text(json.dumps(stamp))
     Path(list_frames(out)[-1]).unlink()  # the run stopped before its last frame
     assert len(list_frames(out)) == len(frames) - 1
-    validate.REUSE = True
-    again, _, _ = validate.run("beam", "oscillating_beam", BEAM, 1)
+    runs.REUSE = True
+    again, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     assert "continuing" in capsys.readouterr().out
-    assert (out / validate.STAMP).exists() and not (out / validate.PARTIAL_STAMP).exists()
+    assert (out / runs.STAMP).exists() and not (out / runs.PARTIAL_STAMP).exists()
     assert [f["t"] for f in again] == [f["t"] for f in frames]
     for name in ("x", "v", "rho", "p"):
         np.testing.assert_array_equal(again[-1][name], frames[-1][name])

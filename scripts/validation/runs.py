@@ -1,0 +1,69 @@
+"""The runs behind the validation: each case run once under runs/validation/NAME by mpirun, stamped with
+its command, rank count and the committed solver code, so that `--reuse` reads a finished run again
+and continues an interrupted one."""
+
+import json
+import subprocess
+from pathlib import Path
+
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.launch import mpirun_mpisph
+
+
+ROOT = Path(__file__).resolve().parents[2]
+RUNS = ROOT / "runs" / "validation"
+
+REUSE = False  # set by validate.py's --reuse
+STAMP = "validate_run.json"
+PARTIAL_STAMP = "validate_run.started.json"  # a run under way, or interrupted
+
+
+def code_version():
+    """The git tree ids of mpisph/ and cases/, on which a run's bits depend, or None when either
+    holds uncommitted changes."""
+    def git(*words):
+        return subprocess.run(["git", *words], capture_output=True, text=True, cwd=ROOT, check=True).stdout
+
+    if git("status", "--porcelain", "--", "mpisph", "cases").strip():
+        return None
+    return git("rev-parse", "HEAD:mpisph", "HEAD:cases").split()
+
+
+def run(name, case, args, ranks, blow_up_ok=False):
+    """Frames, diagnostics and the command of one run; with ``blow_up_ok`` a run that stops on a
+    blow-up (exit 3) returns what it wrote, its last frame the one at the blow-up. With --reuse, a
+    finished run of the same command, rank count and committed code (its stamp) is read, not re-run,
+    and one that was interrupted (its partial stamp, written at its start) continues from its last
+    frame (a restart gives the bits of an uninterrupted run: tests/test_stop_on_signal.py)."""
+    out = RUNS / name
+    stamp = {"case": case, "args": [str(a) for a in args], "ranks": ranks, "code": code_version()}
+    done, started = out / STAMP, out / PARTIAL_STAMP
+
+    def same(path):
+        return path.exists() and {k: json.loads(path.read_text()).get(k) for k in stamp} == stamp
+
+    if REUSE and stamp["code"] and same(done):
+        returncode = json.loads(done.read_text())["returncode"]
+        print(f"  reusing {out} (same command and code)")
+    else:
+        restart = []
+        if REUSE and stamp["code"] and same(started) and list_frames(out):
+            restart = ["--restart", list_frames(out)[-1]]
+            print(f"  continuing {out} from {restart[1]} (same command and code)")
+        done.unlink(missing_ok=True)
+        if stamp["code"]:
+            out.mkdir(parents=True, exist_ok=True)
+            started.write_text(json.dumps(stamp))
+        r = mpirun_mpisph([case, *args, *restart, "--out", out, "--quiet"], ranks=ranks)
+        returncode = r.returncode
+        if returncode != 0 and not (blow_up_ok and returncode == 3):
+            raise SystemExit(r.stderr)
+        if stamp["code"]:
+            done.write_text(json.dumps(dict(stamp, returncode=returncode)))
+            started.unlink()
+    if returncode != 0 and not blow_up_ok:  # a reused run that blew up, read where that is not allowed
+        raise SystemExit(f"{case} {' '.join(args)}: blew up (exit 3); its frames are in {out}")
+    shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}"
+    frames = [read_frame(f) for f in list_frames(out)]
+    return frames, read_diagnostics(out / "diagnostics.csv"), shown
