@@ -6,7 +6,8 @@ Every figure in the page comes from a run made by this script; the command
 of each run is printed in the page beside its result. A row may carry a sixth
 entry, whether it meets its tolerance; the script exits non-zero, listing them,
 when one does not (the sections written before that check was added carry none:
-their tests assert the same figures).
+their tests assert the same figures). The sections live in scripts/validation/, a
+module per family of cases; this script names them and writes the page.
 """
 
 import argparse
