@@ -1,4 +1,5 @@
-"""Import one of the repository's scripts (scripts/NAME.py) as a module, for the tests of its functions."""
+"""Import one of the repository's scripts (scripts/NAME.py) or a module of a package of scripts (scripts/NAME/) for the
+tests of its functions."""
 
 import importlib.util
 import sys
@@ -15,4 +16,15 @@ def load_script(name):
     spec = importlib.util.spec_from_file_location(name, SCRIPTS / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
+    return module
+
+
+def load_package(name):
+    """The module ``name`` of a package in scripts/ (say "validation.runs" for
+    scripts/validation/runs.py) as the scripts import it, scripts/ on the import path; checked to
+    come from scripts/ and not from an installed package of the same name."""
+    if str(SCRIPTS) not in sys.path:
+        sys.path.append(str(SCRIPTS))
+    module = importlib.import_module(name)
+    assert Path(module.__file__).is_relative_to(SCRIPTS / name.split(".")[0]), f"{name} from {module.__file__}"
     return module

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from repo_script import load_script
+from repo_script import load_package
 
 ROOT = Path(__file__).resolve().parent.parent
 BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"]
@@ -16,9 +16,7 @@ BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"
 @pytest.fixture
 def runs(tmp_path, monkeypatch):
     """validate.py's runs module, writing its runs under ``tmp_path``, --reuse off."""
-    load_script("validate")
-    from validation import runs
-
+    runs = load_package("validation.runs")
     monkeypatch.setattr(runs, "RUNS", tmp_path)
     monkeypatch.setattr(runs, "REUSE", False)
     return runs

@@ -1,13 +1,11 @@
 """scripts/validation/page.py: docs/VALIDATION.md's sections behind their markers, so that a run of
 some sections (validate.py --only) keeps the others as they were and in the registry's order."""
 
-from repo_script import load_script
+from repo_script import load_package
 
 
 def test_a_rerun_section_replaces_its_own_text_and_keeps_the_others(tmp_path):
-    load_script("validate")
-    from validation import page
-
+    page = load_package("validation.page")
     path = tmp_path / "VALIDATION.md"
     rows = [("runout", "0.55", "0.60", "-8%", "15%", True), ("rest", "2e-3", "<= 1e-3", "-", "1e-3", False)]
     first = {"a": page.section("a", "Case A", "mpirun -n 2 python -m mpisph a", rows, "a.png", "A's note."),

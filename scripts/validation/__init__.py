@@ -1,5 +1,6 @@
-"""The validation cases of scripts/validate.py, a module per family of cases; each public function
-NAME(ranks) runs its cases and returns the section of docs/VALIDATION.md: title, command, rows, image
+"""The validation cases of scripts/validate.py, a module per family of cases. The sections are the
+functions that validate.py's VALIDATIONS names, each called with the rank count (the beam tables also
+with h_over_dp and v_fs) and returning the section of docs/VALIDATION.md: title, command, rows, image
 and note. runs.py runs a case, figures.py saves a plot, page.py writes the page."""
 
 import matplotlib

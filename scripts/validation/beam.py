@@ -9,7 +9,7 @@ from mpisph.instability import tensile_instability
 from mpisph.io.frames import list_frames, read_frame
 
 from .figures import save
-from .runs import RUNS, run
+from .runs import run, run_directory
 
 
 def beam_panel(fig, ax, frame, title):
@@ -97,7 +97,7 @@ def oscillating_beam(ranks):
         energy = diag["kinetic_energy"] + diag["strain_energy"]
         ax[0].plot(diag["t"], diag["tip_uy"], label=label)
         ax[1].plot(diag["t"], energy / energy[0], label=label)
-        files = list_frames(RUNS / name)  # in the order of ``frames``; re-read with the clamp for the panels
+        files = list_frames(run_directory(name))  # in the order of ``frames``; re-read with the clamp for the panels
         at = int(np.argmin([abs(f["t"] - 0.35) for f in frames]))
         beam_panel(fig, ax[2 + k], read_frame(files[at], walls=True), f"{label}, t = 0.35 s")
         ax[2 + k].set_xlim(-0.01, 0.22)

@@ -11,9 +11,9 @@ from mpisph.compare import measures as compare_measures
 from mpisph.instability import tensile_instability
 from mpisph.kernels import Kernel
 
-from clustered import shifted_on_the_surface
+from clustered import shifted_on_the_surface  # scripts/clustered.py (scripts/ is on the import path)
 from .figures import clustered_panel, save
-from .runs import RUNS, run
+from .runs import run, run_directory
 
 
 def pressure_panel(fig, ax, frame, title):
@@ -69,7 +69,7 @@ def elliptical_drop_remedies(ranks, dp=0.01):
         if spacing == dp:
             cmds.append(cmd)
             case = build_case(module, resolve_params(module, {"dp": str(dp), "stabiliser": st}))
-            drift[st] = compare_measures(RUNS / name, case)
+            drift[st] = compare_measures(run_directory(name), case)
     errors = {s: 100 * (axes["utvf", s] / b_ref - 1) for s in (0.1, 0.05, 0.02, dp)}
     for s in (0.1, 0.05, 0.02):
         rows.append((f"UTVF, dp = {s}: x / y semi-axis at t = 0.0076 s",

@@ -30,13 +30,18 @@ def code_version():
     return git("rev-parse", "HEAD:mpisph", "HEAD:cases").split()
 
 
+def run_directory(name):
+    """Where the run ``name`` writes its frames: runs/validation/NAME."""
+    return RUNS / name
+
+
 def run(name, case, args, ranks, blow_up_ok=False):
     """Frames, diagnostics and the command of one run; with ``blow_up_ok`` a run that stops on a
     blow-up (exit 3) returns what it wrote, its last frame the one at the blow-up. With --reuse, a
     finished run of the same command, rank count and committed code (its stamp) is read, not re-run,
     and one that was interrupted (its partial stamp, written at its start) continues from its last
     frame (a restart gives the bits of an uninterrupted run: tests/test_stop_on_signal.py)."""
-    out = RUNS / name
+    out = run_directory(name)
     stamp = {"case": case, "args": [str(a) for a in args], "ranks": ranks, "code": code_version()}
     done, started = out / STAMP, out / PARTIAL_STAMP
 

@@ -10,7 +10,7 @@ from mpisph.instability import tensile_instability
 from mpisph.io.frames import list_frames, read_frame
 
 from .figures import clustered_panel, save
-from .runs import RUNS, run
+from .runs import run, run_directory
 
 
 WENDLAND = ("wendland_c2", 1.3)  # 000_'s kernel and h / dp
@@ -31,7 +31,7 @@ def _cut_run(case, stabiliser, kernel, epsilon, ranks):
         sets.append(f"artificial_stress_epsilon={epsilon:g}")
     name = "_".join([case, *(s.split("=")[1] for s in sets)])
     frames, _, cmd = run(name, case, ["--set", *sets], ranks)
-    last = read_frame(list_frames(RUNS / name)[-1], walls=True)  # run's frames hold no walls
+    last = read_frame(list_frames(run_directory(name))[-1], walls=True)  # run's frames hold no walls
     first = frames[0]
     label = stabiliser + (f" (epsilon = {epsilon:g})" if stabiliser == "artificial_stress" else "")
     return f"{label}, {kernel[0]} h = {kernel[1]:g} dp", first, last, tensile_instability(last), cmd

@@ -9,7 +9,7 @@ from mpisph.instability import tensile_instability
 from mpisph.io.frames import list_frames, read_frame
 
 from .figures import save
-from .runs import RUNS, run
+from .runs import run, run_directory
 
 
 def deposit_panel(fig, ax, frame, first, title):
@@ -48,7 +48,7 @@ def column_collapse(ranks):
         if L == 0.2:
             cmd = shown
             settled, _, _ = run("column_collapse_2d_settled", "column_collapse_2d",
-                                ["--restart", str(list_frames(RUNS / f"column_collapse_2d_L{L}")[-1]),
+                                ["--restart", str(list_frames(run_directory(f"column_collapse_2d_L{L}"))[-1]),
                                  "--set", "stabiliser=none", "--t-end", "1.15"], ranks)
             still = np.linalg.norm(settled[-1]["v"], axis=1).max() / max(speeds)
             # 000_'s stress diffusion (Feng et al.'s geostatic form) beside the default
@@ -104,7 +104,7 @@ def cohesive_failure(ranks):
     for a, (st, (frames, _, cmd)) in zip(ax, runs.items()):
         deposit_panel(fig, a, frames[-1], frames[0], f"{st}, t = {frames[-1]['t']:.1f} s")
         a.set_xlim(-0.1, 6.0)
-        last = list_frames(RUNS / f"cohesive_failure_2d_{st}")[-1]
+        last = list_frames(run_directory(f"cohesive_failure_2d_{st}"))[-1]
         m = tensile_instability(read_frame(last, walls=True))
         row = (f"{st}: clustering / inner voids / closest pair / fragments (outside the largest) at 2 s",
                f"{100 * m['clustering']:.2f}% / {100 * m['inner_voids']:.2f}% / {m['min_spacing']:.2f} dp / "
@@ -121,7 +121,7 @@ def cohesive_failure(ranks):
     feng, _, _ = run("cohesive_failure_2d_utvf_geostatic_diffusion", "cohesive_failure_2d",
                      ["--set", "stabiliser=utvf", "stress_diffusion=geostatic"], ranks)
     crack = measure.crest_crack(feng[0], feng[-1], dp, 4.0, 0.05 * 2.0)
-    m = tensile_instability(read_frame(list_frames(RUNS / "cohesive_failure_2d_utvf_geostatic_diffusion")[-1],
+    m = tensile_instability(read_frame(list_frames(run_directory("cohesive_failure_2d_utvf_geostatic_diffusion"))[-1],
                                        walls=True))
     rows.append(("utvf, stress_diffusion=geostatic (000_): crest crack [m] / final / peak max speed / clustering "
                  "at 2 s", f"{crack:.2f} / {final_over_peak_speed(feng):.3f} / {100 * m['clustering']:.2f}%",
