@@ -37,7 +37,7 @@ from mpisph.soil import drucker_prager  # noqa: E402
 
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
 from clustered import CLASSES, beside_an_edge, shifted_on_the_surface  # noqa: E402  (this directory)
-from validation.page import MARK, existing_sections  # noqa: E402  (the same page sections as docs/VALIDATION.md)
+from validation import page  # noqa: E402  (the same page sections as docs/VALIDATION.md)
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
@@ -419,18 +419,18 @@ def main():
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     RUNS.mkdir(parents=True, exist_ok=True)
-    kept = existing_sections(PAGE)
+    kept = page.existing_sections(PAGE)
     misses = []
     for name, runner in RUNNERS.items():
         if a.only and name not in a.only:
             continue
         text, missed = runner(a.ranks, a.reuse)
-        kept[name] = MARK.format(name) + "\n" + "\n".join(text) + "\n"
+        kept[name] = page.MARK.format(name) + "\n" + "\n".join(text) + "\n"
         misses += missed
     head = ["# The 3D cases at the paper's spacing", "",
             f"Written by `scripts/production.py` ({a.ranks} ranks; `--only NAME` re-runs one and keeps the other "
             "section). The pictures are drawn off-screen by `mpisph/render.py`.", ""]
-    PAGE.write_text("\n".join(head) + "\n" + "\n".join(kept[k] for k in RUNNERS if k in kept))
+    page.write(PAGE, kept, RUNNERS, head="\n".join(head) + "\n")
     if misses:
         raise SystemExit("missed:\n" + "\n".join(misses))
 

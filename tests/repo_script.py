@@ -11,8 +11,7 @@ SCRIPTS = Path(__file__).resolve().parent.parent / "scripts"
 def load_script(name):
     """The module of scripts/``name``.py, freshly executed, with scripts/ on the import path as when it
     runs (a script may import its siblings)."""
-    if str(SCRIPTS) not in sys.path:
-        sys.path.append(str(SCRIPTS))
+    _scripts_on_the_path()
     spec = importlib.util.spec_from_file_location(name, SCRIPTS / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -23,8 +22,13 @@ def load_package(name):
     """The module ``name`` of a package in scripts/ (say "validation.runs" for
     scripts/validation/runs.py) as the scripts import it, scripts/ on the import path; checked to
     come from scripts/ and not from an installed package of the same name."""
-    if str(SCRIPTS) not in sys.path:
-        sys.path.append(str(SCRIPTS))
+    _scripts_on_the_path()
     module = importlib.import_module(name)
     assert Path(module.__file__).is_relative_to(SCRIPTS / name.split(".")[0]), f"{name} from {module.__file__}"
     return module
+
+
+def _scripts_on_the_path():
+    """scripts/ on the import path, as when a script runs (a script may import its siblings)."""
+    if str(SCRIPTS) not in sys.path:
+        sys.path.append(str(SCRIPTS))

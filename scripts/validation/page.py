@@ -29,6 +29,7 @@ def section(name, title, cmd, rows, image, note):
             f"![{title}](img/{image})\n")
 
 
-def write(page, sections, order):
-    """Write ``sections`` ({name: text}) to ``page`` in the order of the names in ``order``."""
-    page.write_text(HEAD + "\n".join(sections[k] for k in order if k in sections))
+def write(page, sections, order, head=HEAD):
+    """Write ``head`` and ``sections`` ({name: text}) to ``page``, in the order of the names in
+    ``order``."""
+    page.write_text(head + "\n".join(sections[k] for k in order if k in sections))
