@@ -206,12 +206,14 @@ def main(argv):
     names = stabiliser_names(a.stabiliser)
     overrides = _overrides(a.overrides)
     _, case = check(a.case, names, overrides)
-    out = Path(a.out or Path("runs") / f"compare_{a.case}")
+    # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute
+    case_arg = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
+    out = Path(a.out or Path("runs") / f"compare_{Path(a.case).stem}").resolve()
     out.mkdir(parents=True, exist_ok=True)
     runs, rows = {}, {}
     for name in names:
         runs[name] = out / name
-        status, why = run_one(a.case, name, overrides, a.ranks, runs[name])
+        status, why = run_one(case_arg, name, overrides, a.ranks, runs[name])
         has_frames = runs[name].is_dir() and list_frames(os.fspath(runs[name]))
         rows[name] = (status + (f": {why}" if why and status != "done" else ""),
                       measures(runs[name], case) if status != "failed" and has_frames else None)

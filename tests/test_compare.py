@@ -1,6 +1,7 @@
 """``python -m mpisph compare``: one run per stabiliser, a Markdown table and two pictures; clear
 one-line errors for what it cannot compare (mpisph/compare.py)."""
 
+import shutil
 import subprocess
 import sys
 
@@ -9,7 +10,7 @@ import pytest
 from mpisph.launch import MPI_ENV, ROOT
 
 
-def compare(*args, ranks=None):
+def compare(*args, ranks=None, cwd=ROOT):
     import os
 
     env = dict(MPI_ENV, **os.environ)
@@ -17,7 +18,7 @@ def compare(*args, ranks=None):
     cmd = [sys.executable, "-m", "mpisph", "compare", *map(str, args)]
     if ranks:
         cmd = ["mpirun", "-n", str(ranks), *cmd]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, cwd=ROOT, env=env)
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, cwd=cwd, env=env)
 
 
 def table_rows(path):
@@ -67,6 +68,20 @@ def test_a_clamped_elastic_solid_keeps_its_energy_in_the_table(tmp_path):
         cells = row.strip("| ").split(" | ")
         assert cells[1] == "done" and abs(float(cells[9])) < 0.1
         assert cells[10] == cells[11] == "–"
+
+
+def test_paths_are_read_from_where_compare_is_started(tmp_path):
+    """A case file and --out given relative to the caller's directory, outside the repository: the
+    runs (started in the repository's root) read that case and write where the table looks."""
+    shutil.copy(ROOT / "cases" / "taylor_green.py", tmp_path / "my_vortex.py")
+    r = compare("my_vortex.py", "--stabiliser", "tvf_limited", "--set", "nx=10", "t_end=0.05", "output_interval=0.05",
+                "--out", "side_by_side", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    (row,) = table_rows(tmp_path / "side_by_side" / "compare.md")
+    cells = row.strip("| ").split(" | ")
+    assert cells[1] == "done" and float(cells[2]) == pytest.approx(0.05)
+    assert (tmp_path / "side_by_side" / "tvf_limited" / "diagnostics.csv").is_file()
+    assert not (ROOT / "side_by_side").exists()
 
 
 @pytest.mark.parametrize("args, message", [
