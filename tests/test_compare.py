@@ -48,9 +48,11 @@ def test_a_periodic_wall_free_case_reports_its_momentum_drift(tmp_path):
     r = compare("taylor_green", "--stabiliser", "none,tvf_limited", "--set", "nx=20", "t_end=0.1",
                 "output_interval=0.05", "--out", tmp_path)
     assert r.returncode == 0, r.stderr
-    for row in table_rows(tmp_path / "compare.md"):
+    rows = table_rows(tmp_path / "compare.md")
+    assert [row.split(" | ")[0] for row in rows] == ["| none", "| tvf_limited"]
+    for row in rows:
         cells = row.strip("| ").split(" | ")
-        assert cells[4] == "–"  # a fluid: no paired share
+        assert cells[1] == "done" and cells[4] == "–"  # a fluid: no paired share
         assert float(cells[10]) < 1e-12 and cells[11] == "–"
 
 
