@@ -70,6 +70,17 @@ def test_artificial_viscosity_only_dissipates(alpha, beta):
     acc = acceleration(x, kind, start, nbr, k, mass, rho, v, zero, alpha, beta)
     power = float(np.sum(mass[:, None] * v * acc))
     assert power < 0.0
+    # Eq. 25 written out over the ordered pairs (i, j): Pi_ij for approaching pairs, with
+    # mu_ij = h v_ij . x_ij / (r^2 + 0.01 h^2), the force on i -m_j Pi_ij W'(r) x_ij / r
+    i = np.repeat(np.arange(len(x)), np.diff(start))
+    j = nbr[: start[-1]]
+    dx, dv = x[i] - x[j], v[i] - v[j]
+    r = np.linalg.norm(dx, axis=1)
+    vr = np.sum(dv * dx, axis=1)
+    mu = k.h * vr / (r**2 + 0.01 * k.h**2)
+    pi = np.where(vr < 0, (-alpha * SOIL.c0 * mu + beta * mu**2) / (0.5 * (rho[i] + rho[j])), 0.0)
+    pair_power = -mass[i] * mass[j] * pi * k.derivative(r) / r * np.sum(dx * v[i], axis=1)
+    assert power == pytest.approx(pair_power.sum(), rel=1e-10)
     expanding = 3.0 * (x - x.mean(axis=0))
     acc = acceleration(x, kind, start, nbr, k, mass, rho, expanding, zero, alpha, beta)
     assert np.all(acc == 0.0)

@@ -22,6 +22,14 @@ def runs(tmp_path, monkeypatch):
     return runs
 
 
+@pytest.fixture
+def stamped(runs, monkeypatch):
+    """``runs`` with a fixed code version, so that its runs are stamped even while mpisph/ or cases/
+    hold uncommitted changes (code_version's own test is above)."""
+    monkeypatch.setattr(runs, "code_version", lambda: ["tree-of-mpisph", "tree-of-cases"])
+    return runs
+
+
 def test_code_version_follows_the_committed_solver_code(runs, tmp_path, monkeypatch):
     """A tree of its own: the version is None while mpisph/ or cases/ has uncommitted changes, and
     a commit there gives a new one; a change elsewhere leaves it."""
@@ -49,9 +57,8 @@ def test_code_version_follows_the_committed_solver_code(runs, tmp_path, monkeypa
     assert second is not None and second != first and second[0] == first[0]
 
 
-def test_reuse_reads_only_the_same_command(runs, tmp_path, capsys):
-    if runs.code_version() is None:
-        pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
+def test_reuse_reads_only_the_same_command(stamped, tmp_path, capsys):
+    runs = stamped
     frames, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     first = (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns
     runs.REUSE = True
@@ -65,7 +72,7 @@ def test_reuse_reads_only_the_same_command(runs, tmp_path, capsys):
     assert (tmp_path / "beam" / "frame_00000.hdf").stat().st_mtime_ns != first
 
 
-def test_reuse_continues_an_interrupted_run_to_the_same_bits(runs, tmp_path, capsys):
+def test_reuse_continues_an_interrupted_run_to_the_same_bits(stamped, tmp_path, capsys):
     """A run whose partial stamp matches (interrupted: no final stamp, its last frames missing)
     continues from its last frame and ends with the frames of the uninterrupted run, bit for bit."""
     import json
@@ -74,8 +81,7 @@ def test_reuse_continues_an_interrupted_run_to_the_same_bits(runs, tmp_path, cap
 
     from mpisph.io.frames import list_frames
 
-    if runs.code_version() is None:
-        pytest.skip("mpisph/ or cases/ has uncommitted changes: runs are not stamped")
+    runs = stamped
     frames, _, _ = runs.run("beam", "oscillating_beam", BEAM, 1)
     out = tmp_path / "beam"
     stamp = json.loads((out / runs.STAMP).read_text())
