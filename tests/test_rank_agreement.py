@@ -197,9 +197,10 @@ def test_the_cuts_follow_the_surge(tmp_path):
 
 @pytest.mark.parametrize("case", ["dam_break_2d", "dam_break_3d", "inclined_plane"])
 def test_load_balance_columns(runs, case):
-    """diagnostics.csv's load-balance columns: one rank holds everything; on three, the fewest and
-    most particles and pairs per rank bracket the mean, and the imbalance is max / mean - 1 of the
-    pairs, which the rebalancing keeps near or under its threshold (0.1)."""
+    """diagnostics.csv's load-balance columns: one rank holds everything; on three, every rank holds
+    at least a quarter of the particles (the slabs balance the pairs, 30-40 % of the particles on each
+    when this test was written), and the imbalance is max / mean - 1 of the pairs, the mean a third of
+    the one-rank run's, which the rebalancing keeps near or under its threshold (0.1)."""
     one = read_diagnostics(runs(case)[1] / "diagnostics.csv")
     n, pairs = one["n"], one["rank_pairs_max"]
     np.testing.assert_array_equal(one["rank_particles_min"], n)
@@ -208,10 +209,8 @@ def test_load_balance_columns(runs, case):
     np.testing.assert_array_equal(one["imbalance"], 0.0)
     np.testing.assert_array_equal(one["rebalances"], 0.0)
     three = read_diagnostics(runs(case)[3] / "diagnostics.csv")
-    assert np.all(three["rank_particles_min"] <= n / 3) and np.all(three["rank_particles_max"] >= n / 3)
-    # the same configurations, so the same total of pairs: the mean per rank is a third of it
-    mean = pairs / 3
-    assert np.all(three["rank_pairs_min"] <= mean) and np.all(three["rank_pairs_max"] >= mean)
+    assert np.all(three["rank_particles_min"] >= n / 4)
+    mean = pairs / 3  # the same configurations, so the same total of pairs as on one rank
     np.testing.assert_allclose(three["imbalance"], three["rank_pairs_max"] / mean - 1.0, rtol=1e-12)
     assert np.median(three["imbalance"]) < 0.15
     assert np.all(np.diff(three["rebalances"]) >= 0)

@@ -49,9 +49,16 @@ def test_correction_matrix_is_identity_inside_and_corrects_edges():
     x, kind, mass, rho, start, nbr = block()
     B = unpacked(corrections(x, kind, mass, rho, start, nbr), 2)
     inner = np.all((x > 3 * DP) & (x < np.array([9, 7]) * DP), axis=1)
-    # isotropic, and the identity up to the lattice sum's 2.7 % departure from the integral at h = 1.3 dp
+    # isotropic: the inverse of the lattice sum -sum_j dp^2 r_ij (x) grad W_ij = a I over the whole
+    # support, a = -(1/2) sum_j dp^2 r_ij W'(r_ij), which departs from the integral's 1 by 2.7 % at h = 1.3 dp
     np.testing.assert_allclose(B[inner], np.broadcast_to(B[inner][0], B[inner].shape), atol=1e-12)
-    np.testing.assert_allclose(B[inner][0], 1.0268 * np.eye(2), atol=1e-4)
+    m = np.arange(-3, 4)
+    offsets = DP * np.stack(np.meshgrid(m, m, indexing="ij"), axis=-1).reshape(-1, 2)
+    r = np.linalg.norm(offsets, axis=1)
+    r = r[(r > 0) & (r < 2 * H)]
+    a = -0.5 * DP**2 * np.sum(r * Kernel("wendland_c2", H, 2).derivative(r))
+    assert 1 / a == pytest.approx(1.0268, abs=1e-4)
+    np.testing.assert_allclose(B[inner][0], np.eye(2) / a, rtol=1e-12, atol=1e-12)
     edge = (x[:, 1] < DP) & (x[:, 0] > 3 * DP) & (x[:, 0] < 9 * DP)
     assert np.all(B[edge, 1, 1] > 1.5)  # half a support: the normal gradient is doubled back
 
