@@ -76,6 +76,16 @@ def _view(moving, walls, dp):
     return lo, hi
 
 
+def colour_field(frame, moving):
+    """(value per moving particle, colour-bar label, colour map) of the picture: the accumulated
+    deviatoric plastic strain where the frame has it (the Drucker-Prager schemes), else the speed."""
+    if "plastic_strain" in frame:
+        return frame["plastic_strain"][moving], STRAIN_LABEL, "magma_r"
+    if "v" in frame:
+        return np.linalg.norm(frame["v"][moving], axis=1), SPEED_LABEL, "viridis"
+    return np.zeros(int(np.count_nonzero(moving))), "", "viridis"
+
+
 def deposit_png(out_dir, png_path=None):
     """Draw the last frame of the run in ``out_dir`` as a PNG and return its path.
 
@@ -107,12 +117,7 @@ def deposit_png(out_dir, png_path=None):
     x0 = first["x"][:, axes]
     dp = _spacing(first if len(first["x"]) else last, dim)
 
-    if "plastic_strain" in last:
-        value, label, cmap = last["plastic_strain"][~wall], STRAIN_LABEL, "magma_r"
-    elif "v" in last:
-        value, label, cmap = np.linalg.norm(last["v"][~wall], axis=1), SPEED_LABEL, "viridis"
-    else:
-        value, label, cmap = np.zeros(len(x)), "", "viridis"
+    value, label, cmap = colour_field(last, ~wall)
     # colour scale up to the 99.5th percentile, so that a few runaway particles do not wash it out
     finite = value[np.isfinite(value)]
     top = float(finite.max()) if len(finite) else 0.0

@@ -7,7 +7,7 @@ from mpi4py import MPI
 from mpirun import mpisph, stderr_lines
 from mpisph.errors import InputError
 from mpisph.io.frames import frame_path, write_frame
-from mpisph.plots import deposit_png
+from mpisph.plots import SPEED_LABEL, STRAIN_LABEL, colour_field, deposit_png
 
 DP = 0.01
 PARAMS = {"case": "fake_collapse", "dp": DP}
@@ -57,11 +57,26 @@ def test_deposit_png_default_path(tmp_path):
 
 @pytest.mark.parametrize("strain", [True, False])
 def test_deposit_png_given_path(tmp_path, strain):
-    """Without plastic_strain (a fluid) the particles are coloured by speed."""
     run = fake_run(tmp_path / "run", strain)
     path = deposit_png(run, tmp_path / "picture.png")
     assert path == str(tmp_path / "picture.png")
     assert_png(path)
+
+
+@pytest.mark.parametrize("strain", [True, False])
+def test_moving_particles_coloured_by_plastic_strain_else_by_speed(strain):
+    """A frame with plastic_strain (the Drucker-Prager schemes) is coloured by it; without (fluids,
+    elastic solids, mu(I) grains) by the speed; the walls are left out."""
+    frame = fields(0.5, strain)
+    moving = frame["kind"] == 0
+    value, label, _ = colour_field(frame, moving)
+    assert len(value) == 200
+    if strain:
+        np.testing.assert_array_equal(value, frame["plastic_strain"][:200])
+        assert label == STRAIN_LABEL
+    else:
+        np.testing.assert_allclose(value, np.hypot(frame["v"][:200, 0], frame["v"][:200, 1]), rtol=1e-15)
+        assert label == SPEED_LABEL
 
 
 def test_no_frames(tmp_path):
