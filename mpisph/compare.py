@@ -40,7 +40,6 @@ from .io.diagnostics import read_diagnostics
 from .io.frames import list_frames, read_frame
 from .launch import mpirun_mpisph
 from .particles import MOVING
-from .stabilisers import stabiliser_names
 
 USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
          "[--out DIR] [--colour FIELD]")
@@ -203,7 +202,7 @@ def pictures(runs, colour, out):
 
 def main(argv):
     a = parse(argv)
-    names = stabiliser_names(a.stabiliser)
+    names = tuple(t.strip() for t in a.stabiliser.split(",") if t.strip())  # one run each: none is a run too
     overrides = _overrides(a.overrides)
     _, case = check(a.case, names, overrides)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute

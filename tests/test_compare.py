@@ -74,15 +74,16 @@ def test_a_clamped_elastic_solid_keeps_its_energy_in_the_table(tmp_path):
 
 def test_paths_are_read_from_where_compare_is_started(tmp_path):
     """A case file and --out given relative to the caller's directory, outside the repository: the
-    runs (started in the repository's root) read that case and write where the table looks."""
+    runs (started in the repository's root) read that case and write where the table looks; `none`
+    alone is one run, the baseline."""
     shutil.copy(ROOT / "cases" / "taylor_green.py", tmp_path / "my_vortex.py")
-    r = compare("my_vortex.py", "--stabiliser", "tvf_limited", "--set", "nx=10", "t_end=0.05", "output_interval=0.05",
+    r = compare("my_vortex.py", "--stabiliser", "none", "--set", "nx=10", "t_end=0.05", "output_interval=0.05",
                 "--out", "side_by_side", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     (row,) = table_rows(tmp_path / "side_by_side" / "compare.md")
     cells = row.strip("| ").split(" | ")
     assert cells[1] == "done" and float(cells[2]) == pytest.approx(0.05)
-    assert (tmp_path / "side_by_side" / "tvf_limited" / "diagnostics.csv").is_file()
+    assert (tmp_path / "side_by_side" / "none" / "diagnostics.csv").is_file()
     assert not (ROOT / "side_by_side").exists()
 
 
