@@ -31,12 +31,12 @@ def mu_i_params(alpha_doc, viscous_step):
     return {
         "alpha": Param(0.0, "-", f"artificial viscosity (Eq. 38; {alpha_doc})"),
         "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
-        "viscous_form": Param("cleary", "-", "viscous term: Eq. 27 as printed, or the corrected stress divergence",
+        "viscous_form": Param("cleary", "-", "viscous term: Eq. 27's pair term (its 8 as 2 (D + 2)), or the corrected stress divergence",
                               choices=("cleary", "corrected_stress")),
         "viscous_step": Param(viscous_step, "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: the "
                               "viscous term backward in time (physics/implicit_viscosity.py)",
                               choices=("explicit", "implicit")),
-        "viscous_stress": Param("full", "-", "viscous stress: full, 2 eta eps or Eq. 27 as printed (each with a "
+        "viscous_stress": Param("full", "-", "viscous stress: full, 2 eta eps or Eq. 27's pair term (each with a "
                                 "bulk viscosity), or deviatoric, 2 eta dev(eps), Eq. 4 with no bulk viscosity, or "
                                 "the pair term that tends to its divergence (physics/mu_i.py)",
                                 choices=("full", "deviatoric")),
@@ -44,7 +44,7 @@ def mu_i_params(alpha_doc, viscous_step):
                                 "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
                                "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
-        "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 42), carried, the share of it "
+        "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 41), carried, the share of it "
                               "the pairs carry, or carried_mean, its kernel mean (physics/mu_i.py)",
                               choices=("state", "carried", "carried_mean")),
         "law_strain_rate": Param("own", "-", "strain rate of the friction law: own (each grain's, Eq. 31), "

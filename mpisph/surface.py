@@ -1,8 +1,9 @@
 """Free-surface detection from the divergence of the position (000_ Sec. 3.3).
 
-div r_i = -sum_j V_j r_ij . grad_i W_ij (Eq. 31 in mpisph's sign convention,
-see kernels.py; walls included) is close to the dimension d inside a body
-and drops where the kernel support is truncated. Each material particle gets
+div r_i = -sum_j V_j r_ij . grad_i W_ij (walls included) is close to the dimension d
+inside a body and drops where the kernel support is truncated. 000_ prints Eq. 31
+without the minus; with its own grad_i W_ij = W' e_ij, W' <= 0 (Sec. 3.1.1; kernels.py)
+that sum is near -d, where its thresholds (0.75 d, 0.6 d) need +d. Each material particle gets
 a class:
 
 - SURFACE (outermost): div r < 0.75 d;

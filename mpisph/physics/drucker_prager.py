@@ -10,6 +10,11 @@ of Eq. 14, then returned to the yield surface f = alpha_phi I1 + sqrt(J2) - k_c
 2. radial scaling: if sqrt(J2) > k_c - alpha_phi I1 the deviator is scaled
    by r = (k_c - alpha_phi I1) / sqrt(J2).
 
+Eq. 10 prints the plastic term's volumetric part as 3 K alpha_phi I, the associated flow;
+the rate here takes 3 K alpha_psi I, the flow rule g = alpha_psi I1 + sqrt(J2) that Eq. 13's
+denominator 9 alpha_phi K alpha_psi + G follows from, and which 002_ Eq. 28 writes with
+its alpha_varphi, the dilatancy angle's (002_ Eq. 14); with psi = phi the two agree.
+
 Plastic flow in the rate (Eq. 10) is applied only while the multiplier rate
 is positive (loading); on unloading from the yield surface the rate is
 elastic. The accumulated deviatoric plastic strain adds dt gamma_dot / sqrt(3)

@@ -8,6 +8,8 @@ Pressure from the equation of state p = c0^2 (rho - rho0) with c0 of Eq. 6
 with D and W the symmetric and skew parts of the corrected velocity gradient
 (Eqs. 9, 23); in 2D, D is plane strain (D_zz = 0) and sigma^s_zz evolves,
 so the in-plane stiffness is E / (1 - nu^2) as in the beam theory of Eq. 47.
+Eq. 8 takes the deviator with 1/d, d the dimension; in plane strain the stress is
+3D, and its deviator takes tr(D)/3 in 2D as well.
 The rotation terms (the Jaumann rate of Eq. 10) keep the rate objective when
 the body rotates, as the beam's root section does; for small rotations they
 vanish and the rate is Eq. 8. Continuity is Eq. 21 (no

@@ -25,7 +25,9 @@ and granular materials (solid.py): it is what the authors' code, SPHinXsys,
 does in the density relaxation of its fluid and plastic-continuum steps
 (``DissipativePJump(u_jump) = rho0 c0 u_jump limiter(max(u_jump, 0))``,
 u_jump = (v_i - v_j).e_ij, e_ij from j to i), and what 001_ Eq. 6 gives with
-its U_l = v_i.e_ij. 000_'s text (a compression wave, U_L >= U_R, with
+its U_l = v_i.e_ij (001_ writes e_ij = -r_ij / r_ij without the direction of r_ij;
+its momentum, Eq. 3, repels a pair under pressure only with e_ij from j to i, and
+then U_l - U_r = u_jump). 000_'s text (a compression wave, U_L >= U_R, with
 U_L = -v_i.e_ij) would damp approaching pairs instead; the scheme option
 ``limiter = approaching`` runs that reading, ``limiter = none`` leaves out the
 dissipation of the momentum (SPHinXsys's "NoRiemann" density relaxation). Energy cannot decide between them
@@ -34,7 +36,9 @@ less than 1 %, on its late speed by 2 % (docs/REMEDIES.md,
 scripts/limiter_study.py).
 
 and the viscous acceleration is 001_ Eq. 7,
-2/rho_i sum_j V_j mu v_ij / (r_ij + 0.01 h) W'_ij.
+2/rho_i sum_j V_j mu v_ij / (r_ij + 0.01 h) W'_ij, where Eq. 7 prints v_ij / r_ij: the
+0.01 h, as in the authors' code (SPHinXsys's ViscousAcceleration), keeps a close pair's
+term finite.
 
 Walls are fixed dummy particles. A wall neighbour j takes the fluid
 particle's density, a pressure extrapolated hydrostatically,

@@ -71,7 +71,7 @@ antisymmetric (linear momentum is conserved); walls take the mirror image's
 T_w = T_i (viscous_stress.py).
 
 The option ``law_pressure = carried`` puts into the friction law the pressure
-that the pairs carry, s_i p_i, rather than the grains' pressure p_i of Eq. 42.
+that the pairs carry, s_i p_i, rather than the grains' pressure p_i of Eq. 41.
 Why: the law is a ratio of stresses, shear over normal, and in the discrete
 balance of momentum the pairs carry the viscous stress in full (the virial of
 T = 2 eta eps B is 2 eta eps B A = 2 eta eps) but only s p of the pressure,
@@ -330,7 +330,7 @@ def pair_term_factors(dim, deviatoric):
     """(eta factor, radial, along) of the viscous pair force eta_ij (radial (v_ij . e) e + along v_ij)
     m_j W' / (r rho_i rho_j) (``momentum``). On a smooth velocity at a uniform eta the two parts tend
     to (radial / (D + 2)) eta (lap v + 2 grad div v) / 2 and along eta lap v / 2 (the kernel's
-    second moments, sum_j V_j W' r = -D). Eq. 27 as printed is radial = 2 (D + 2) alone: eta (lap v +
+    second moments, sum_j V_j W' r = -D). Eq. 27 (its 8 as 2 (D + 2)) is radial = 2 (D + 2) alone: eta (lap v +
     2 grad div v), whose isotropic part is a bulk viscosity (1 + 2 / D) eta. The deviatoric
     stress's divergence eta (lap v + (1 - 2 / D) grad div v) takes radial = (D + 2)(D - 2) / D and
     along = (D + 2) / D: Morris et al.'s (1997) form alone in 2D, 5/3 of each part in 3D (the
@@ -388,17 +388,17 @@ class MuIScheme(Scheme):
     then grain density, pressure and viscosity (the state), and continuity (the
     rate). Options (``Case.scheme_options``): ``alpha`` of Eq. 38 (default 0),
     ``beta_max`` of Eq. 36 (default 1.5, Morris et al.), ``viscous_form``:
-    ``cleary``, the pair term of Eq. 27 as printed, or ``corrected_stress``, the
+    ``cleary``, the pair term of Eq. 27 (its 8 as 2 (D + 2)), or ``corrected_stress``, the
     viscous stress 2 eta eps from the corrected gradient and its divergence with
     the correction matrix (module docstring), and ``viscous_step``: ``explicit``
     (Eq. 39's viscous limit bounds the step) or ``implicit``, the viscous term
     of either form taken backward in time in the kick (implicit_viscosity.py), and
     ``viscosity_mean``: ``harmonic`` (Eq. 37), ``arithmetic`` or ``secant``
     (mu_i_law.pair_viscosity; ghosts then need gamma_dot too), and
-    ``viscous_stress``: ``full`` (2 eta eps, or Eq. 27's pair term as printed) or ``deviatoric``
+    ``viscous_stress``: ``full`` (2 eta eps, or Eq. 27's pair term) or ``deviatoric``
     (2 eta dev(eps), Eq. 4 with no bulk viscosity, or the pair term that tends to its divergence), and
     ``pressure_form``: ``symmetric`` (Eq. 27) or ``isotropic``, and ``law_pressure``: ``state``
-    (the grains' pressure of Eq. 42), ``carried`` (the share of it the pairs carry) or
+    (the grains' pressure of Eq. 41), ``carried`` (the share of it the pairs carry) or
     ``carried_mean`` (its kernel mean) in the friction law, and ``law_strain_rate``: ``own`` (each
     particle's gamma_dot, Eq. 31), ``kernel_mean`` (the modulus of the kernel mean of eps) or
     ``deviatoric_kernel_mean`` (that of its deviator) in the law (module docstring).

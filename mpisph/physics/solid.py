@@ -2,8 +2,8 @@
 
 Stresses are full 3 x 3 Cauchy tensors, tension positive, also in 2D (plane
 strain: the out-of-plane strain rate is zero, the out-of-plane stress is
-not); they and B are stored packed (tensors.py). In mpisph's sign convention
-(e_ij from j to i, grad_i W_ij = W' e_ij, W' <= 0, see kernels.py):
+not); they and B are stored packed (tensors.py). With 000_'s convention (its
+Sec. 3.1.1: e_ij from j to i, grad_i W_ij = W' e_ij, W' <= 0; kernels.py):
 
     velocity gradient   L_i = -sum_j V_j (v_i - v_j) (x) (B_i grad_i W_ij)     (000_ Eq. 23)
     correction matrix   B_i = (-sum_j V_j r_ij (x) grad_i W_ij)^-1              (000_ Eq. 24)
@@ -11,6 +11,10 @@ not); they and B are stored packed (tensors.py). In mpisph's sign convention
                                   - (2 P*_ij) e_ij] W'_ij                      (000_ Eqs. 17, 22, 25-26)
 
 (B_i = B_j = I in the momentum for granular materials, see below)
+
+Eq. 23 is printed without the minus. With Eq. 24's B, sum_j V_j r_ij (x) grad_i W_ij =
+-B_i^-1, so for a linear field v = A x the printed sum gives -A: the minus makes Eq. 23
+the gradient that Eq. 24 corrects (tests/test_solid_kernels.py: exact for a linear field).
 
 with s = sigma + p I the deviatoric (shear) stress, p = -tr(sigma)/3, the
 Riemann pressure P*_ij = (p_i + p_j)/2 - beta rho_bar c0 u_jump / 2 and

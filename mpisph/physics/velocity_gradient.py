@@ -1,12 +1,12 @@
 """The SPH velocity gradient's pair sum, shared by the solids' stress updates (solid.py) and the
 mu(I) strain rate (viscous_stress.py).
 
-In mpisph's sign convention (r_ij = x_i - x_j, g_ij = grad_i W_ij = W' r_ij / r) it is
+With the papers' r_ij = x_i - x_j and g_ij = grad_i W_ij = W' r_ij / r (kernels.py) it is
 
     M_i = -sum_j V_j (v_i - v_j) (x) g_ij,   V_j = m_j / rho_j,
 
-the gradient of 000_ Eq. 23 and 004_ Eq. 31, which each caller multiplies by B_i (000_ Eq. 24)
-or takes as it is.
+the gradient of 004_ Eq. 31 and of 000_ Eq. 23 (printed there without the minus: solid.py
+says why it is needed), which each caller multiplies by B_i (000_ Eq. 24) or takes as it is.
 """
 
 from numba import njit

@@ -9,8 +9,12 @@ once per advection step, i.e. after the Verlet update of the previous one
 - ``utvf``: 000_ Eqs. 30-37 on inner and free-surface particles alike.
 
 With g_i = sum_j V_j grad_i W_ij, the shift of 000_ Eq. 30 is
-dr_i = -2 alpha h^2 g_i, alpha = 0.2 (the minus sign is mpisph's convention
-for grad W, kernels.py: g points towards the denser side). UTVF projects the
+dr_i = -2 alpha h^2 g_i, alpha = 0.2. 000_ prints the sum with a plus, and with its
+own grad_i W_ij = W' e_ij, e_ij from j to i (its Sec. 3.1.1; kernels.py) g points
+towards the denser side, where the printed sign would move the particle. The
+minus is what 000_'s text describes (Sec. 3.3: shifted by Eq. 30, a surface
+particle "will move in a direction away from other particles") and what
+regularises (tests/test_transport_velocity.py: a displaced particle goes back). UTVF projects the
 shift of free-surface particles (outermost and near-surface, surface.py) on
 the tangent plane, dr - (dr.n) n (Eq. 36), with the normal from the colour
 gradient corrected by B (Eqs. 32-35; one material, walls count as filled
