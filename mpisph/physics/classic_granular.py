@@ -1,7 +1,7 @@
 """The classic SPH of 002_ for Drucker-Prager soil (Secs. 2-3, 5), the alternative to the Riemann
 scheme, and the same SPH for a linear elastic solid (Gray, Monaghan & Swift 2001).
 
-In mpisph's sign convention (r_ij = x_i - x_j, grad_i W_ij = W' r_ij / r,
+In the papers' sign convention (r_ij = x_i - x_j, grad_i W_ij = W' r_ij / r,
 W' <= 0, kernels.py), with v_ij = v_i - v_j and sigma = s - p I (tension
 positive, s the deviator, p = -tr(sigma)/3):
 

@@ -9,7 +9,7 @@ rho_R c_R):
     P*  = (p_l + p_r)/2 + beta rho_bar c (U_l - U_r) / 2
     beta = min(eta max(u_jump/c, 0), 1),   eta = 3
 
-In mpisph's sign convention (e_ij from j to i, see kernels.py) the
+In the papers' sign convention (e_ij from j to i, see kernels.py) the
 compression speed U_l - U_r (U = velocity along the axis from i to j, 000_
 Eq. 19) equals -u_jump with u_jump = (v_i - v_j).e_ij, so the dissipative
 part of P* is -beta rho_bar c u_jump / 2: its pair power,

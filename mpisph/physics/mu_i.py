@@ -1,7 +1,7 @@
 """Dense granular flow with the mu(I) rheology (004_): the scheme and its pair loops.
 
 The material is a weakly compressible visco-plastic fluid (mu_i_law.py gives
-its pressure and viscosity). In mpisph's sign convention (r_ij = x_i - x_j,
+its pressure and viscosity). In the papers' sign convention (r_ij = x_i - x_j,
 grad_i W_ij = W' r_ij / r, W' <= 0, kernels.py), with v_ij = v_i - v_j:
 
     strain rate    L_i = -sum_j V_j v_ij (x) grad_i W_ij,  eps = (L + L^T)/2,

@@ -1,6 +1,6 @@
 """The strain rate of the mu(I) scheme and the divergence of its corrected viscous stress.
 
-In mpisph's sign convention (r_ij = x_i - x_j, g_ij = grad_i W_ij = W' r_ij / r),
+In the papers' sign convention (r_ij = x_i - x_j, g_ij = grad_i W_ij = W' r_ij / r),
 the velocity gradient of 004_ Eq. 31 and the corrected gradient of 000_ Eq. 24 are
 
     M_i[u] = -sum_j V_j (u_i - u_j) (x) g_ij,   V_j = m_j / rho_j,   L_i = M_i B_i,
