@@ -32,8 +32,8 @@ def _parser():
     add_set(p)
     p.add_argument("--t-end", type=float, help="simulated end time [s]")
     p.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
-    p.add_argument("--out", help="output directory (default runs/CASE); a run replaces the frames an earlier "
-                   "run wrote there after its start")
+    p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
+                   "a run replaces the frames an earlier run wrote there after its start")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
     return p
@@ -167,7 +167,9 @@ def run(args, comm):
         particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
     case.forget_particles()
     restarted = bool(args.restart)
-    out_dir = args.out or os.path.join("runs", args.case)
+    # a restart continues in its frame's directory unless told otherwise
+    out_dir = args.out or (os.path.dirname(os.path.abspath(args.restart)) if restarted
+                           else os.path.join("runs", args.case))
     progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
