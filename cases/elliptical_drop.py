@@ -1,4 +1,8 @@
-"""Elliptical water drop: a circular drop stretched by v = (-A x, A y) (000_ Sec. 4.1, Monaghan 1994)."""
+"""Elliptical water drop: a circular drop stretched by v = (-A x, A y) (000_ Sec. 4.1, Monaghan 1994).
+
+The defaults run 000_ Fig. 4a (no stabiliser) with 001_'s dual time stepping; ``--set
+stabiliser=utvf time_stepping=single`` runs 000_'s method with its single step.
+"""
 
 import numpy as np
 

@@ -46,7 +46,7 @@ APPROACH = 0.4  # distance of the approach gauge upstream of the barrier [m]
 
 PARAMS = {
     "geometry": Param("", "-", "directory of the STL files " + ", ".join(WALLS) + " and soil; empty: cases/flume"),
-    "dp": Param(0.04, "m", "particle spacing (0.04 in the paper)", positive=True),
+    "dp": Param(0.04, "m", "particle spacing (000_'s cube, Sec. 5.3; Sec. 5.4 gives none)", positive=True),
     # 000_ Table 2, second column; the density by kernel summation, as the authors' code does for soils:
     # evolved by Eq. 16 alone it drifts without bound in the resting deposit (docs/FLUME.md)
     **soil_params(rho0=1850.0, E=1.8e6, nu=0.3, cohesion=5.0e3, phi=25.0, density_reinit="free_surface",

@@ -1,4 +1,9 @@
-"""Rotating square water patch with free surface (000_ Sec. 4.2, Colagrossi 2005)."""
+"""Rotating square water patch with free surface (000_ Sec. 4.2, Colagrossi 2005).
+
+The defaults run a quick patch (dp = L / 50, no stabiliser, dual time stepping, to t omega = 2);
+000_ Figs. 8-9 are ``--set dp=0.01 stabiliser=utvf time_stepping=single --t-end 2.04``
+(docs/VALIDATION.md, sections rotating_square_patch and rotating_square_patch_remedies).
+"""
 
 import numpy as np
 

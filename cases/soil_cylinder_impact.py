@@ -3,7 +3,8 @@
 The floor's surface is the line y = 0, the cylinder's lowest point starts
 ``gap`` above it, its axis on x = 0. The column ``front`` of diagnostics.csv
 is the largest |x| of a soil particle: the cylinder's half-width, so its
-maximum spread (002_ Fig. 10) is twice the front.
+maximum spread (002_ Fig. 10) is twice the front. The step follows the CFL
+condition; ``--set max_time_step=1e-6`` caps it at 002_ Table 2's.
 """
 
 import numpy as np

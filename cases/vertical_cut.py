@@ -1,4 +1,10 @@
-"""Vertical cut in cohesive soil: a 4 m x 2 m Drucker-Prager block against a left wall fails under its own weight (002_ Sec. 6, Bui et al. 2008)."""
+"""Vertical cut in cohesive soil: a 4 m x 2 m Drucker-Prager block against a left wall fails under its own weight (002_ Sec. 6, Bui et al. 2008).
+
+002_'s material, spacing and kernel, run by default with the Riemann scheme and UTVF of the other
+soil cases, so that the remedies compare on one scheme (docs/VALIDATION.md, section remedies_cuts);
+``--set scheme=classic_granular`` runs 002_'s own SPH, the only one that reads its alpha and beta.
+The step follows the CFL condition; ``--set max_time_step=5e-5`` caps it at 002_ Table 4's.
+"""
 
 from mpisph.case import Param
 from mpisph.kernels import KERNELS
