@@ -112,20 +112,27 @@ def cmd_plot(out_dir, png_path=None):
     print(f"wrote {deposit_png(out_dir, png_path)}")
 
 
-def _prepare_out_dir(comm, path, start):
+def _prepare_out_dir(comm, path, start, keep_later=False):
     """Create the output directory on rank 0, check it can be written, and delete the frames an
-    earlier run wrote there after ``start``, the time this run starts from (-inf from the start)."""
-    from .io.frames import drop_frames_after
+    earlier run wrote there after ``start``, the time this run starts from (-inf from the start);
+    with ``keep_later`` (a restart into its frame's directory that no --out named) refuse instead
+    when there are such frames."""
+    from .io.frames import drop_frames_after, frames_after
 
     problem = None
     if comm.rank == 0:
-        try:
-            os.makedirs(path, exist_ok=True)
-            with tempfile.NamedTemporaryFile(dir=path):
-                pass
-            drop_frames_after(path, start)
-        except OSError as e:
-            problem = f"cannot write output directory {path!r}: {e.strerror or e}"
+        later = frames_after(path, start) if keep_later else []
+        if later:
+            problem = (f"{path} holds {len(later)} frame(s) after t = {start:g} s, which a restart there "
+                       f"replaces: give --out {path} to replace them, or --out another directory")
+        else:
+            try:
+                os.makedirs(path, exist_ok=True)
+                with tempfile.NamedTemporaryFile(dir=path):
+                    pass
+                drop_frames_after(path, start)
+            except OSError as e:
+                problem = f"cannot write output directory {path!r}: {e.strerror or e}"
     problem = comm.bcast(problem, root=0)
     if problem:
         raise InputError(problem)
@@ -167,14 +174,14 @@ def run(args, comm):
         particles, t, step = particles_from_case(comm, case, parts), 0.0, 0
     case.forget_particles()
     restarted = bool(args.restart)
-    # a restart continues in its frame's directory unless told otherwise
-    out_dir = args.out or (os.path.dirname(os.path.abspath(args.restart)) if restarted
+    # a restart continues in its frame's directory unless told otherwise (the frame's own, through links)
+    out_dir = args.out or (os.path.dirname(os.path.realpath(args.restart)) if restarted
                            else os.path.join("runs", args.case))
     progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
-    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"))
+    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), keep_later=restarted and not args.out)
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
                                                                   wall_force_columns(case), barrier_load_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)

@@ -131,18 +131,3 @@ def test_a_new_run_replaces_the_frames_of_an_earlier_one(tmp_path):
     times = run("0.02", "--restart", list_frames(tmp_path)[1])
     assert len(times) == 3 and max(times) <= 0.02 + 1e-12
 
-
-def test_a_restart_without_out_continues_in_its_frames_directory(tmp_path):
-    """--restart FRAME with no --out writes where FRAME is (the run it continues), whatever the
-    directory it is started from: its frames and diagnostics go on from the frame's time."""
-    from mpisph.io.diagnostics import read_diagnostics
-
-    r = mpisph(["dam_break_2d", "--set", "dp=0.1", "--t-end", "0.02", "--output-interval", "0.01",
-                "--out", tmp_path / "run", "--quiet"], ranks=1)
-    assert r.returncode == 0, r.stderr
-    frame = list_frames(tmp_path / "run")[1]
-    r = mpisph(["dam_break_2d", "--restart", frame, "--t-end", "0.04", "--quiet"], ranks=1)
-    assert r.returncode == 0, r.stderr
-    assert [read_frame(f)["t"] for f in list_frames(tmp_path / "run")] == pytest.approx([0, 0.01, 0.02, 0.03, 0.04])
-    diag = read_diagnostics(tmp_path / "run" / "diagnostics.csv")
-    assert diag["t"][0] == 0.0 and diag["t"][-1] == pytest.approx(0.04) and np.all(np.diff(diag["t"]) > 0)

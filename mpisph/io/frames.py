@@ -311,11 +311,16 @@ def list_frames(out_dir):
     return [p for k, p in sorted((k, p) for k, p in keyed if k is not None)]
 
 
+def frames_after(out_dir, time):
+    """The complete frames of ``out_dir`` stored after ``time``."""
+    return [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
+
+
 def drop_frames_after(out_dir, time):
     """Delete the frames of ``out_dir`` stored after ``time`` and their entries in its series file
     (io/series.py): a run that starts at ``time`` there replaces what an earlier run wrote later
     (``time`` = -inf: every frame, for a run from the start). Files that are not complete frames stay."""
-    late = [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
+    late = frames_after(out_dir, time)
     for p in late:
         os.remove(p)
     drop_from_series(out_dir, [os.path.basename(p) for p in late])

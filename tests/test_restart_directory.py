@@ -1,0 +1,63 @@
+"""Where a restart without --out writes: on in its frame's directory (the run it continues), read
+from wherever it is started and through a link to the frame; a one-line refusal, touching nothing,
+when that directory holds frames after the restart's time, which it would replace."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.launch import MPI_ENV, ROOT
+from mpirun import stderr_lines
+
+RUN = ["dam_break_2d", "--set", "dp=0.1", "--output-interval", "0.01", "--quiet"]
+
+
+def mpisph(*args, cwd):
+    """``python -m mpisph`` on one rank, started in ``cwd``."""
+    env = dict(MPI_ENV, **os.environ)
+    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    return subprocess.run([sys.executable, "-m", "mpisph", *map(str, args)], capture_output=True, text=True,
+                          timeout=300, cwd=cwd, env=env)
+
+
+def times(directory):
+    return [read_frame(f)["t"] for f in list_frames(directory)]
+
+
+@pytest.fixture
+def stopped(tmp_path):
+    """A run to t = 0.02 s in tmp_path/run, frames every 0.01 s."""
+    r = mpisph(*RUN, "--t-end", "0.02", "--out", "run", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert times(tmp_path / "run") == pytest.approx([0.0, 0.01, 0.02])
+    return tmp_path / "run"
+
+
+def test_a_restart_from_the_last_frame_continues_its_run(stopped, tmp_path):
+    r = mpisph(*RUN, "--restart", "run/frame_00002.hdf", "--t-end", "0.04", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert times(stopped) == pytest.approx([0.0, 0.01, 0.02, 0.03, 0.04])
+    t = read_diagnostics(stopped / "diagnostics.csv")["t"]
+    assert t[0] == 0.0 and t[-1] == pytest.approx(0.04) and np.all(np.diff(t) > 0)
+    link = tmp_path / "latest.hdf"
+    link.symlink_to(stopped / "frame_00004.hdf")
+    r = mpisph(*RUN, "--restart", link.name, "--t-end", "0.05", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert times(stopped)[-1] == pytest.approx(0.05) and not list_frames(tmp_path)
+
+
+def test_a_restart_that_would_replace_later_frames_needs_out(stopped, tmp_path):
+    before = {f: os.path.getmtime(f) for f in list_frames(stopped)}
+    r = mpisph(*RUN, "--restart", "run/frame_00001.hdf", "--t-end", "0.04", cwd=tmp_path)
+    lines = stderr_lines(r.stderr)
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert lines[0].startswith("mpisph: error: ") and "holds 1 frame(s) after t = 0.01 s" in lines[0]
+    assert {f: os.path.getmtime(f) for f in list_frames(stopped)} == before
+    r = mpisph(*RUN, "--restart", "run/frame_00001.hdf", "--t-end", "0.03", "--out", "run", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert times(stopped) == pytest.approx([0.0, 0.01, 0.02, 0.03])
