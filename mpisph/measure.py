@@ -59,16 +59,21 @@ def nearest_value(frame, name, point, count=4):
     return float(np.mean(frame[name][np.argsort(d)[:count]]))
 
 
-def _surface_profile(x, dp):
-    """Bins of width dp along x from the leftmost particle: (left edges, top + dp/2, occupied); the
-    height is the last coordinate (y in 2D, z in 3D, where a slab's bins span its width). A column
-    of a lattice starts its bin: the 1e-9 keeps it there when round-off puts it just below the bin's
+def _bins(x, dp):
+    """The leftmost particle's x and each particle's bin of width dp along x from it. A column of a
+    lattice starts its bin: the 1e-9 keeps it there when round-off puts it just below the bin's
     edge (without it, half the bins of a column's first frame came out empty)."""
     lo = x[:, 0].min()
-    k = np.floor((x[:, 0] - lo) / dp + 1e-9).astype(int)
+    return lo, np.floor((x[:, 0] - lo) / dp + 1e-9).astype(int)
+
+
+def _surface_profile(x, dp):
+    """The bins of ``_bins``: (left edges, top + dp/2, occupied, each particle's bin); the height is
+    the last coordinate (y in 2D, z in 3D, where a slab's bins span its width)."""
+    lo, k = _bins(x, dp)
     top = np.full(k.max() + 1, -np.inf)
     np.maximum.at(top, k, x[:, -1])
-    return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top)
+    return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top), k
 
 
 def layer_means(frame, dp, values):
@@ -85,7 +90,7 @@ def runout(frame, dp):
 
     Particles beyond a gap (grains thrown ahead of the toe) do not count.
     """
-    left, _, occupied = _surface_profile(frame["x"], dp)
+    left, _, occupied, _ = _surface_profile(frame["x"], dp)
     return float(left[_last_connected(occupied)] + dp)
 
 
@@ -134,8 +139,8 @@ def front_position(frame, dp, radial=False, sectors=16):
     azimuthal sector, averaged over the sectors."""
     x = frame["x"]
     if not radial:
-        edge = runout(frame, dp)
-        return float(x[(x[:, 0] >= edge - dp) & (x[:, 0] < edge), 0].max())
+        _, _, occupied, k = _surface_profile(x, dp)
+        return float(x[k == _last_connected(occupied), 0].max())
     r, sector = _polar(x, sectors)
     edges = _sector_runouts(r, sector, dp, sectors)
     at_front = (r >= edges[sector] - dp) & (r < edges[sector])
@@ -149,7 +154,8 @@ def beyond_the_edge(frame, dp, radial=False, sectors=16):
     ``radial_runout``'s): those that a gap of a bin or more separates from the deposit."""
     x = frame["x"]
     if not radial:
-        return x[:, 0] >= runout(frame, dp)
+        _, _, occupied, k = _surface_profile(x, dp)
+        return k > _last_connected(occupied)
     r, sector = _polar(x, sectors)
     return r >= _sector_runouts(r, sector, dp, sectors)[sector]
 
@@ -238,7 +244,7 @@ def first_period(t, y):
 
 def surface_profile(frame, dp):
     """(bin centres, top of the deposit) over occupied dp-wide bins along x."""
-    left, top, occupied = _surface_profile(frame["x"], dp)
+    left, top, occupied, _ = _surface_profile(frame["x"], dp)
     return left[occupied] + 0.5 * dp, top[occupied]
 
 

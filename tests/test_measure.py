@@ -47,13 +47,14 @@ def test_time_offset_recovers_a_known_shift():
 
 
 def test_line_average_is_exact_for_a_linear_field_on_a_symmetric_lattice():
-    """v_x = 2 + 3 x - y on a lattice about the points: the kernel weights are symmetric about each
-    point, so the linear part averages to its value there; outside the support: nan."""
+    """v_x = 2 + 3 x - y on a lattice symmetric about the points (corners of its cells): the kernel
+    weights are symmetric about each point, so the linear part averages to its value there; outside
+    the support: nan."""
     x = lattice(40, 40)
     v = np.zeros_like(x)
     v[:, 0] = 2.0 + 3.0 * x[:, 0] - x[:, 1]
     kernel = Kernel("wendland_c2", 1.3 * DP, 2)
-    points = np.array([[0.2, 0.2], [0.15, 0.25], [1.0, 1.0]])  # lattice points, then far away
+    points = np.array([[0.2, 0.2], [0.15, 0.25], [1.0, 1.0]])  # cell corners, then far away
     got = measure.line_average({"x": x, "v": v}, points, 0, kernel)
     np.testing.assert_allclose(got[:2], 2.0 + 3.0 * points[:2, 0] - points[:2, 1], rtol=1e-12)
     assert np.isnan(got[2])
@@ -74,8 +75,8 @@ def test_layer_means_go_layer_by_layer_from_the_bed():
 
 
 def test_runout_and_profile_of_a_heap_with_a_grain_ahead():
-    """A staircase heap of 10 lattice columns (10 particles high down to 1) and a grain three bins
-    beyond. The bins are dp wide from the leftmost particle, so each column starts a bin (its first
+    """A staircase heap of 10 lattice columns (10 particles high down to 1) and a grain in the fourth
+    bin after its last (three empty between). The bins are dp wide from the leftmost particle, so each column starts a bin (its first
     frame's lattice, which round-off had put in the bin before); the connected deposit ends a bin
     after its last column's, the grain lies beyond it, and the profile is the staircase."""
     x = np.concatenate([lattice(1, 10 - c, x0=c * DP) for c in range(10)] + [lattice(1, 1, x0=13 * DP)])
@@ -88,7 +89,23 @@ def test_runout_and_profile_of_a_heap_with_a_grain_ahead():
     np.testing.assert_array_equal(measure.beyond_the_edge(frame, DP), x[:, 0] > 0.1)
     assert measure.farthest_edge(frame, DP) == pytest.approx(0.14)
     assert measure.deposit_height(frame, DP, x_max=0.05) == pytest.approx(0.10)
-    assert measure.deposit_height(frame, DP, x_max=0.12) == pytest.approx(0.10)
+    mirrored = {"x": np.c_[0.1 - x[:, 0], x[:, 1]]}  # the tallest column on the right, at x = 0.095
+    assert measure.deposit_height(mirrored, DP, x_max=0.05) == pytest.approx(0.05)  # 5 high at x = 0.045
+
+
+def test_the_front_bin_of_a_lattice_holds_its_last_column():
+    """The connected deposit's outermost bin of a first frame holds its last lattice column however
+    round-off places it (lube_collapse_2d's column at spacings where it had fallen out of that bin)."""
+    assert measure.front_position({"x": lattice(2, 3)}, DP) == pytest.approx(0.015)
+    from mpisph.case import build_case, load_case_module, resolve_params
+
+    module = load_case_module("lube_collapse_2d")
+    for n in (87, 93, 160):
+        dp = 0.0972 / n
+        (body,) = build_case(module, resolve_params(module, {"dp": repr(dp)})).bodies
+        x, _ = body.x.everything()
+        assert measure.front_position({"x": x}, dp) == pytest.approx(0.0972 - 0.5 * dp, rel=1e-9)
+        assert not measure.beyond_the_edge({"x": x}, dp).any()
 
 
 def test_runout_of_a_cases_first_frame_is_its_length_and_a_half_spacing():
