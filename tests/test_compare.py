@@ -85,6 +85,10 @@ def test_paths_are_read_from_where_compare_is_started(tmp_path):
     assert cells[1] == "done" and float(cells[2]) == pytest.approx(0.05)
     assert (tmp_path / "side_by_side" / "none" / "diagnostics.csv").is_file()
     assert not (ROOT / "side_by_side").exists()
+    r = compare("my_vortex.py", "--stabiliser", "none", "--set", "nx=10", "t_end=0.05", "output_interval=0.05",
+                cwd=tmp_path)  # no --out: runs/compare_<the case file's stem> under the caller's directory
+    assert r.returncode == 0, r.stderr
+    assert len(table_rows(tmp_path / "runs" / "compare_my_vortex" / "compare.md")) == 1
 
 
 @pytest.mark.parametrize("args, message", [
