@@ -59,18 +59,13 @@ def nearest_value(frame, name, point, count=4):
     return float(np.mean(frame[name][np.argsort(d)[:count]]))
 
 
-def _bins(x, dp):
-    """The leftmost particle's x and each particle's bin of width dp along x from it. A column of a
-    lattice starts its bin: the 1e-9 keeps it there when round-off puts it just below the bin's
-    edge (without it, half the bins of a column's first frame came out empty)."""
-    lo = x[:, 0].min()
-    return lo, np.floor((x[:, 0] - lo) / dp + 1e-9).astype(int)
-
-
 def _surface_profile(x, dp):
-    """The bins of ``_bins``: (left edges, top + dp/2, occupied, each particle's bin); the height is
-    the last coordinate (y in 2D, z in 3D, where a slab's bins span its width)."""
-    lo, k = _bins(x, dp)
+    """Bins of width dp along x from the leftmost particle: (left edges, top + dp/2, occupied, each
+    particle's bin); the height is the last coordinate (y in 2D, z in 3D, where a slab's bins span
+    its width). A column of a lattice starts its bin: the 1e-9 keeps it there when round-off puts it
+    just below the bin's edge (without it, half the bins of a column's first frame came out empty)."""
+    lo = x[:, 0].min()
+    k = np.floor((x[:, 0] - lo) / dp + 1e-9).astype(int)
     top = np.full(k.max() + 1, -np.inf)
     np.maximum.at(top, k, x[:, -1])
     return lo + np.arange(len(top)) * dp, top + 0.5 * dp, np.isfinite(top), k

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from mpisph import measure
+from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.kernels import Kernel
 
 DP = 0.01
@@ -14,6 +15,13 @@ def lattice(nx, ny, x0=0.0, y0=0.0):
     """Positions (n, 2) of an nx x ny lattice of spacing DP whose first cell starts at (x0, y0)."""
     i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
     return np.stack([x0 + (i.ravel() + 0.5) * DP, y0 + (j.ravel() + 0.5) * DP], axis=1)
+
+
+def lube_column(dp):
+    """The positions of lube_collapse_2d's column (L_0 = 9.72 cm) as the case builds it at ``dp``."""
+    module = load_case_module("lube_collapse_2d")
+    (body,) = build_case(module, resolve_params(module, {"dp": repr(dp)})).bodies
+    return body.x.everything()[0]
 
 
 def test_semi_axes_and_surge_front_add_half_a_spacing_to_the_outermost_centres():
@@ -76,9 +84,10 @@ def test_layer_means_go_layer_by_layer_from_the_bed():
 
 def test_runout_and_profile_of_a_heap_with_a_grain_ahead():
     """A staircase heap of 10 lattice columns (10 particles high down to 1) and a grain in the fourth
-    bin after its last (three empty between). The bins are dp wide from the leftmost particle, so each column starts a bin (its first
-    frame's lattice, which round-off had put in the bin before); the connected deposit ends a bin
-    after its last column's, the grain lies beyond it, and the profile is the staircase."""
+    bin after its last (three empty between). The bins are dp wide from the leftmost particle, so
+    each column starts a bin (its first frame's lattice, which round-off had put in the bin before);
+    the connected deposit ends a bin after its last column's, the grain lies beyond it, and the
+    profile is the staircase."""
     x = np.concatenate([lattice(1, 10 - c, x0=c * DP) for c in range(10)] + [lattice(1, 1, x0=13 * DP)])
     frame = {"x": x}
     assert measure.runout(frame, DP) == pytest.approx(0.105)
@@ -97,13 +106,9 @@ def test_the_front_bin_of_a_lattice_holds_its_last_column():
     """The connected deposit's outermost bin of a first frame holds its last lattice column however
     round-off places it (lube_collapse_2d's column at spacings where it had fallen out of that bin)."""
     assert measure.front_position({"x": lattice(2, 3)}, DP) == pytest.approx(0.015)
-    from mpisph.case import build_case, load_case_module, resolve_params
-
-    module = load_case_module("lube_collapse_2d")
     for n in (87, 93, 160):
         dp = 0.0972 / n
-        (body,) = build_case(module, resolve_params(module, {"dp": repr(dp)})).bodies
-        x, _ = body.x.everything()
+        x = lube_column(dp)
         assert measure.front_position({"x": x}, dp) == pytest.approx(0.0972 - 0.5 * dp, rel=1e-9)
         assert not measure.beyond_the_edge({"x": x}, dp).any()
 
@@ -111,13 +116,7 @@ def test_the_front_bin_of_a_lattice_holds_its_last_column():
 def test_runout_of_a_cases_first_frame_is_its_length_and_a_half_spacing():
     """lube_collapse_2d's column as the case builds it (L_0 = 9.72 cm, dp = L_0 / 20): the runout of
     its first frame is L_0 + dp / 2 (the last column's bin ends a spacing beyond its centre)."""
-    from mpisph.case import build_case, load_case_module, resolve_params
-
-    module = load_case_module("lube_collapse_2d")
-    case = build_case(module, resolve_params(module, {"dp": "0.00486"}))
-    (body,) = case.bodies
-    x, _ = body.x.everything()
-    assert measure.runout({"x": x}, 0.00486) == pytest.approx(0.0972 + 0.00243, rel=1e-9)
+    assert measure.runout({"x": lube_column(0.00486)}, 0.00486) == pytest.approx(0.0972 + 0.00243, rel=1e-9)
 
 
 def test_radial_runout_of_a_disc_with_a_detached_ring():

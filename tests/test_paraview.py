@@ -130,4 +130,3 @@ def test_a_new_run_replaces_the_frames_of_an_earlier_one(tmp_path):
     run("0.04")
     times = run("0.02", "--restart", list_frames(tmp_path)[1])
     assert len(times) == 3 and max(times) <= 0.02 + 1e-12
-
