@@ -146,17 +146,19 @@ def edge_share(frame):
     return f"{int(np.sum(beside_an_edge(frame)))} of {int(np.sum(shifted_on_the_surface(frame)))}"
 
 
-ABC = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)  # the normal of the cube's vertical diagonal plane, our plane ABC
+# the horizontal axis of the cube's vertical diagonal plane, our plane ABC
+ABC = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
 
 
-def strain_by_height(frame, normal=None):
+def strain_by_height(frame, axis=None):
     """The accumulated plastic strain of the moving particles of ``frame`` in five bands of height
     (bottom first, each a fifth of the highest particle's height), and its largest value: of the
-    particles within dp/2 of the vertical plane through the origin with ``normal``, or of all."""
+    particles within dp/2 of the vertical plane through the origin along the horizontal ``axis``,
+    or of all."""
     moving = frame["kind"] == MOVING
     x, strain = frame["x"][moving], frame["plastic_strain"][moving]
-    if normal is not None:
-        _, _, dist = render.plane_coordinates(x, (0.0, 0.0, 0.0), normal, (0.0, 0.0, 1.0))
+    if axis is not None:
+        _, _, dist = render.plane_coordinates(x, (0.0, 0.0, 0.0), axis, (0.0, 0.0, 1.0))
         near = dist < 0.5 * float(frame["params"]["dp"])
         x, strain = x[near], strain[near]
     band = np.minimum((5.0 * x[:, 2] / x[:, 2].max()).astype(int), 4)
@@ -261,7 +263,11 @@ def flume_3d(ranks, reuse):
     rows = instability_rows(out, (1.0, 2.0, 4.0))
     variants = variant_runs("flume_3d", ranks, reuse, (1.0, 2.0, 4.0))
     kept_at_1, = render.frames_at(variants["geostatic_edge_neighbours_kept"][0], (1.0,))
-    cube_kept_at_1, = render.frames_at(RUNS / "cube_failure_3d_geostatic_edge_neighbours_kept", (1.0,))
+    # the cube's run of the same variant (cube_failure_3d's section makes it; here it is made if missing)
+    cube_kept = "geostatic_edge_neighbours_kept"
+    cube_out, *_ = run("cube_failure_3d", VARIANTS["cube_failure_3d"][cube_kept][1], ranks, True,
+                       name=f"cube_failure_3d_{cube_kept}")
+    cube_kept_at_1, = render.frames_at(cube_out, (1.0,))
     snap = render.snapshots_png(out, (0.0, 1.0, 2.0, 4.0), IMG / "flume_3d_speed.png", view=(30.0, -65.0),
                                 title="flume_3d: speed")
     fig, ax = plt.subplots(1, 3, figsize=(15, 4))
@@ -365,7 +371,7 @@ def cube_band_start(ranks, reuse):
         cmds.append(f"`{cmd}`{stopped(blow_up)}")
         for k, f in enumerate(render.frames_at(out, EARLY)):
             params = f["params"]
-            shares = [[np.mean(b > 0.01) for b in strain_by_height(f, normal)[0]] for normal in (None, ABC)]
+            shares = [[np.mean(b > 0.01) for b in strain_by_height(f, axis)[0]] for axis in (None, ABC)]
             rows.append(f"| {label} | {f['t']:.2f} | " + " | ".join(" / ".join(f"{v:.2f}" for v in s) for s in shares)
                         + " |")
             if shares[0][-1] > shares[0][0] and label not in top_first:
@@ -429,7 +435,7 @@ def main():
         misses += missed
     head = ["# The 3D cases at the paper's spacing", "",
             f"Written by `scripts/production.py` ({a.ranks} ranks; `--only NAME` re-runs one and keeps the other "
-            "section). The pictures are drawn off-screen by `mpisph/render.py`.", ""]
+            "sections). The pictures are drawn off-screen by `mpisph/render.py`.", ""]
     page.write(PAGE, kept, RUNNERS, head="\n".join(head) + "\n")
     if misses:
         raise SystemExit("missed:\n" + "\n".join(misses))
