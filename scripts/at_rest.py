@@ -8,7 +8,7 @@ and the density range over rho0 with the number of particles beyond 1.5 rho0; th
 ``--fastest`` particles of the last frame with their place, velocity, the speed at which they
 moved since the frame before (displacement over the frame interval: a particle whose velocity the
 transport-velocity shift cancels has a velocity but does not move), density, pressure and distance
-to the nearest other particle (walls included).
+to the nearest other moving particle (the frames are read without their walls).
 """
 
 import argparse
