@@ -1,13 +1,14 @@
 """Run the validation cases and write docs/VALIDATION.md with plots.
 
-    .venv/bin/python scripts/validate.py [--ranks 2] [--only NAME ...] [--beam-h-over-dp 30] [--reuse]
+    .venv/bin/python scripts/validate.py [--ranks 2] [--only NAME ...] [--beam-h-over-dp 30]
+        [--beam-v-f V ...] [--reuse]
 
 Every figure in the page comes from a run made by this script; the command
-of each run is printed in the page beside its result. A row may carry a sixth
-entry, whether it meets its tolerance; the script exits non-zero, listing them,
-when one does not (the sections written before that check was added carry none:
-their tests assert the same figures). The sections live in scripts/validation/, a
-module per family of cases; this script names them and writes the page.
+of each run is printed in the page beside its result. Every row with a tolerance
+carries a sixth entry, whether it meets it; the script exits non-zero, listing
+them, when one does not (rows whose tolerance is a word, such as "runs", carry
+none). The sections live in scripts/validation/, a module per family of cases;
+this script names them and writes the page.
 """
 
 import argparse
