@@ -1,6 +1,6 @@
 """Time to write one frame and its bandwidth, against plain numpy writing the same bytes.
 
-    .venv/bin/python benchmarks/frames.py [--dp 0.02]   (1M soil particles + 0.19M wall particles)
+    .venv/bin/python benchmarks/frames.py [--dp 0.02]   (1M soil particles + 0.27M wall particles)
 
 The first frame of the 3D cube failure (every field the solver writes, wall
 particles included) is written as the solver writes it, on 1 and 2 ranks
@@ -12,15 +12,13 @@ best of three writes.
 
 import argparse
 import os
-import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 
 from mpisph.io.frames import frame_path
-from mpisph.launch import MPI_ENV, ROOT
+from mpisph.launch import ROOT, mpirun_python
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPEATS = 3  # best of, for each writer: the disk's speed varies from write to write
@@ -78,15 +76,14 @@ def main():
     a = ap.parse_args()
     if a.worker:
         return worker(float(a.worker[0]), a.worker[1])
-    env = dict(MPI_ENV, **os.environ)
-    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
     with tempfile.TemporaryDirectory(dir=ROOT) as out:
         results = {}
         for ranks in (1, 2):
-            cmd = ["mpirun", "-n", str(ranks), sys.executable, os.path.join(HERE, "frames.py"),
-                   "--worker", str(a.dp), out]
             for _ in range(REPEATS):
-                r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=600, check=True)
+                r = mpirun_python([os.path.join(HERE, "frames.py"), "--worker", str(a.dp), out], ranks=ranks,
+                                  timeout=600)
+                if r.returncode != 0:
+                    raise SystemExit(f"the frame writer failed on {ranks} ranks:\n{r.stderr}")
                 seconds, nbytes, n = r.stdout.split()
                 if ranks not in results or float(seconds) < results[ranks][0]:
                     results[ranks] = float(seconds), int(nbytes), int(n)

@@ -23,7 +23,6 @@ and prints per rank:
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -154,18 +153,17 @@ def main():
         worker(a.dp, int(a.worker[0]), a.worker[1])
         return
     sys.path.insert(0, os.path.dirname(HERE))
-    from mpisph.launch import MPI_ENV, ROOT
-    env = {**os.environ, **MPI_ENV}
+    from mpisph.launch import ROOT, mpirun_mpisph, mpirun_python
     with tempfile.TemporaryDirectory() as out:
-        subprocess.run([sys.executable, "-m", "mpisph", "flume_3d", "--set", "dp=0.1", "--t-end", "0.01",
-                        "--out", out, "--quiet"], cwd=ROOT, env=env, check=True)  # numba's cache
+        r = mpirun_mpisph(["flume_3d", "--set", "dp=0.1", "--t-end", "0.01", "--out", out, "--quiet"])  # numba's cache
+        if r.returncode != 0:
+            raise SystemExit(f"the warm-up run failed:\n{r.stderr}")
     for ranks in a.ranks:
         with tempfile.TemporaryDirectory(dir=ROOT / "runs") as out:
-            cmd = ["mpirun", "-n", str(ranks), "--oversubscribe", sys.executable, os.path.abspath(__file__),
-                   "--dp", str(a.dp), "--worker", str(a.steps), out]
-            r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
+            args = [os.path.abspath(__file__), "--dp", str(a.dp), "--worker", str(a.steps), out]
+            r = mpirun_python(args, ranks=ranks)
             if r.returncode != 0:
-                raise SystemExit(f"failed: {' '.join(cmd)}\n{r.stderr}")
+                raise SystemExit(f"failed on {ranks} ranks: {' '.join(args)}\n{r.stderr}")
             report(json.loads(r.stdout.strip().splitlines()[-1]))
         print(f"  [.venv/bin/python benchmarks/scale.py --dp {a.dp} --ranks {ranks} --steps {a.steps}]", flush=True)
 

@@ -160,10 +160,15 @@ def mass_extent(frame, fraction, radial=False):
     the frame's particles lies: the centre of the particle at which their cumulative mass, in
     order of distance, reaches it. Unlike the edge of a deposit, it does not follow a sheet of a
     few grains' thickness that a finer spacing resolves further out."""
-    distance = outward_distance(frame["x"], radial)
-    order = np.argsort(distance, kind="stable")
-    cumulative = np.cumsum(frame["mass"][order])
-    return float(distance[order][np.searchsorted(cumulative, fraction * cumulative[-1])])
+    return weighted_quantile(outward_distance(frame["x"], radial), frame["mass"], fraction)
+
+
+def weighted_quantile(values, weights, share):
+    """The value at which the cumulative weight, in order of the values, reaches ``share`` of the
+    total weight."""
+    order = np.argsort(values, kind="stable")
+    cumulative = np.cumsum(weights[order])
+    return float(values[order][np.searchsorted(cumulative, share * cumulative[-1])])
 
 
 def edge_rest_ratio(before, last, t, front, dp, radial=False):

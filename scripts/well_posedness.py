@@ -22,19 +22,13 @@ import numpy as np
 
 from mpisph.case import case_of_frame
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.measure import weighted_quantile
 from mpisph.physics.mu_i_law import friction
 from mpisph.references import MU_I_MATERIALS
 from mpisph.well_posedness import dissipation_rate, ill_posed_dissipation_share, ill_posed_energy_share, \
     partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
 
 LOW_I = (1e-2, 1e-3, 1e-4)
-
-
-def weighted_quantiles(values, weights, quantiles):
-    """The values below which the given shares of the weights lie."""
-    order = np.argsort(values)
-    cumulative = np.cumsum(weights[order])
-    return [float(values[order][np.searchsorted(cumulative, q * cumulative[-1])]) for q in quantiles]
 
 
 def run_table(run):
@@ -46,7 +40,7 @@ def run_table(run):
     rows = []
     for f in frames:
         power = dissipation_rate(f)
-        quartiles = weighted_quantiles(f["inertial_number"], power, (0.25, 0.5, 0.75)) if power.sum() > 0 else []
+        quartiles = [weighted_quantile(f["inertial_number"], power, q) for q in (0.25, 0.5, 0.75)] if power.sum() > 0 else []
         rows.append((f["t"], float(power.sum()), ill_posed_dissipation_share(f, window), quartiles))
     return window, rows, ill_posed_energy_share(frames, window)
 

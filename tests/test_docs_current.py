@@ -163,8 +163,8 @@ def _sources():
 def test_named_files_exist():
     names = set()
     for path in DOCS:
-        names |= {m.group(1) for m in re.finditer(r"\b((?:scripts|benchmarks|jobs|tests|mpisph|cases)/[\w/]+\.(?:py|sh))\b",
-                                                  path.read_text())}
+        named = re.finditer(r"\b((?:scripts|benchmarks|jobs|tests|mpisph|cases)/[\w/]+\.(?:py|sh))\b", path.read_text())
+        names |= {m.group(1) for m in named}
     assert len(names) > 20
     names = {n for n in names if not re.search(r"/[A-Z]+\.", n)}  # cases/NAME.py: a placeholder
     assert [n for n in sorted(names) if not (ROOT / n).is_file()] == []

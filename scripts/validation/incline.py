@@ -4,7 +4,7 @@ analytical steady state."""
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mpisph import incline_measures, measure, references, surface
+from mpisph import incline_measures, measure, references
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.granular_flow import CONSISTENT_MU_I
 
@@ -39,8 +39,6 @@ def inclined_plane(ranks):
     """004_ Sec. 5.1 with 004_ Table 2 (H = 0.1 m, dp = 5 mm, 40 columns, m_0 = 1 s) to 6.5 s: the
     viscous form, the pair-viscosity mean and alpha against the analytical profile; a layer on a
     level bed against hydrostatic pressure."""
-    from mpisph.case import build_case, load_case_module, resolve_params
-
     module = load_case_module("inclined_plane")
     params = resolve_params(module, {})
     H, dp, theta, g, columns, t_end = params["H"], params["dp"], params["theta"], params["g"], params["columns"], 6.5
@@ -66,10 +64,8 @@ def inclined_plane(ranks):
             last = frames[-2]  # the last regular frame
         y, u = measure.layer_means(last, dp, last["v"][:, 0])
         _, p = measure.layer_means(last, dp, last["p"])
-        top = last["x"][:, 1] > last["x"][:, 1].max() - 0.5 * dp
-        surface = last["v"][top, 0].mean()
-        ua = references.inclined_plane_velocity(material, theta, depth, g, np.clip(y, 0.0, depth))
-        l2 = np.sqrt(np.mean((u - ua) ** 2) / np.mean(ua**2))
+        surface = u_s * incline_measures.layer_speeds(last, params, material)[1]
+        l2 = incline_measures.profile_figures(last, params, material)[0]
         ph = references.inclined_plane_pressure(material, theta, depth, g, np.clip(y, 0.0, depth))
         mean_u = diag["momentum_x"] / diag["mass"]
         late = (diag["t"] >= last["t"] - 1.0) & (diag["t"] <= last["t"])
