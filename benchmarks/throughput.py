@@ -1,8 +1,7 @@
 """Particle-steps per second per core at >= 100k particles, 1 and 2 ranks, the 2-rank efficiency,
 and each figure as a fraction of this machine's ceiling.
 
-    .venv/bin/python benchmarks/throughput.py [--cases dam_break_2d column_collapse_2d cube_failure_3d dam_break_3d]
-                                              [--repeat 3]
+    .venv/bin/python benchmarks/throughput.py [--cases NAME ...] [--repeat 3]
     .venv/bin/python benchmarks/throughput.py --remedies [--stabilisers NAME ...] [--repeat 3]
 
 ``--remedies`` runs the 2D column collapse (103k particles) once per stabiliser of a solid case
@@ -14,7 +13,8 @@ in 3D, as PySPH's 143k), the 2D column collapse and the 3D cube failure
 (Drucker-Prager with UTVF, single time stepping as in 000_ Sec. 3.4), and the
 mu(I) incline (004_ Table 2 material, 100 layers of 1000 particles, single
 time stepping) and the 3D mu(I) collapse (a = 0.55, 100k grains on 85k floor
-particles, implicit viscous kick). Each
+particles, implicit viscous kick); all of them by default, ``--cases`` names some
+(a key of BENCHMARKS: a case, or a case and other settings, "cube_failure_3d geostatic"). Each
 run is timed by the solver itself (wall time of the step loop, numba
 compilation excluded by a warm-up run), best of ``--repeat`` runs: on a shared
 virtual machine single runs scatter by up to 10 %, the best of three by about 2 %.

@@ -1,7 +1,7 @@
 """Where a 2D soil's lateral stress goes: the change of sum_i V_i sigma_xx split by cause and by band.
 
     .venv/bin/python scripts/stress_budget.py CASE [--set NAME=VALUE ...] [--t-end 1] [--every 0.1]
-                                              [--rows 5]
+                                              [--rows 5] [--out runs/stress_budget]
 
 Runs CASE (a riemann_granular case in 2D, one rank) with its stress update watched. At every update
 the change of each grain's sigma_xx is split into

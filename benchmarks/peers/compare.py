@@ -1,6 +1,6 @@
 """Read the logs of the runs made by benchmarks/peers/pysph.sh and print the figures.
 
-    python benchmarks/peers/compare.py RUNS.tsv [--mpi-missing REASON]
+    python benchmarks/peers/compare.py RUNS.tsv [--mpi-missing REASON] [--busy-check]
 
 RUNS.tsv has one row per run, tab-separated:
     case  code(pysph|mpisph)  ranks  stdout-file  output-dir  process-seconds  cpu-seconds  command
