@@ -52,6 +52,17 @@ def times_vector(t, i, dim, v0, v1, v2):
     return w0, w1, w2
 
 
+@njit(inline="always")
+def full_times_vector(T, i, dim, v0, v1, v2):
+    """The full dim x dim tensor ``T[i]`` (T of shape (n, dim, dim), not symmetric) times
+    (v0, v1, v2) as three scalars (the third 0 in 2D)."""
+    if dim == 2:
+        return T[i, 0, 0] * v0 + T[i, 0, 1] * v1, T[i, 1, 0] * v0 + T[i, 1, 1] * v1, 0.0
+    return (T[i, 0, 0] * v0 + T[i, 0, 1] * v1 + T[i, 0, 2] * v2,
+            T[i, 1, 0] * v0 + T[i, 1, 1] * v1 + T[i, 1, 2] * v2,
+            T[i, 2, 0] * v0 + T[i, 2, 1] * v1 + T[i, 2, 2] * v2)
+
+
 @njit(cache=True)
 def adjugate(A, out):
     """out = adj A of a 2 x 2 or 3 x 3 matrix A (A adj A = det A I); returns det A. For a

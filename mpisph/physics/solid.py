@@ -85,7 +85,7 @@ from ..kernels import pair_dw
 from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
-from ..tensors import component
+from ..tensors import component, full_times_vector
 from .fluid import continuity, reinitialise_density
 from .velocity_gradient import gradient_sum
 from .walls import along_wall_normal, wall_relative_velocity
@@ -165,11 +165,7 @@ def tensor_times(T, k, p, dim, d0, d1, d2):
         return ((T[k, 0] + pk) * d0 + T[k, 3] * d1 + T[k, 5] * d2,
                 T[k, 3] * d0 + (T[k, 1] + pk) * d1 + T[k, 4] * d2,
                 T[k, 5] * d0 + T[k, 4] * d1 + (T[k, 2] + pk) * d2)
-    if dim == 2:
-        return T[k, 0, 0] * d0 + T[k, 0, 1] * d1, T[k, 1, 0] * d0 + T[k, 1, 1] * d1, 0.0
-    return (T[k, 0, 0] * d0 + T[k, 0, 1] * d1 + T[k, 0, 2] * d2,
-            T[k, 1, 0] * d0 + T[k, 1, 1] * d1 + T[k, 1, 2] * d2,
-            T[k, 2, 0] * d0 + T[k, 2, 1] * d1 + T[k, 2, 2] * d2)
+    return full_times_vector(T, k, dim, d0, d1, d2)
 
 
 @njit(inline="always")

@@ -46,8 +46,8 @@ from numba import njit
 from ..kernels import pair_dw
 from ..neighbours import pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
-from ..tensors import (IDENTITY_BLOCK, block_less_outer, block_plus_diagonal, component, store_scaled_inverse,
-                       times_vector)
+from ..tensors import (IDENTITY_BLOCK, block_less_outer, block_plus_diagonal, component, full_times_vector,
+                       store_scaled_inverse, times_vector)
 from .velocity_gradient import gradient_sum
 from .walls import along_wall_normal
 
@@ -119,13 +119,13 @@ def stress_divergence(n, start, nbr, xc, rho, T, mass, kind, normal, k, acc):
                 f *= 2.0 / (rho[i] * rho[i])
                 if kind[j] == WALL_SLIP:
                     d0, d1, d2 = along_wall_normal(j, normal, d0, d1, d2)
-                t0, t1, t2 = _times(T, i, dim, d0, d1, d2)
+                t0, t1, t2 = full_times_vector(T, i, dim, d0, d1, d2)
                 if kind[j] == WALL_SLIP:
                     t0, t1, t2 = along_wall_normal(j, normal, t0, t1, t2)
             else:
                 f /= rho[i] * rho[j]
-                t0, t1, t2 = _times(T, i, dim, d0, d1, d2)
-                s0, s1, s2 = _times(T, j, dim, d0, d1, d2)
+                t0, t1, t2 = full_times_vector(T, i, dim, d0, d1, d2)
+                s0, s1, s2 = full_times_vector(T, j, dim, d0, d1, d2)
                 t0, t1, t2 = t0 + s0, t1 + s1, t2 + s2
             a0 += f * t0
             a1 += f * t1
@@ -134,16 +134,6 @@ def stress_divergence(n, start, nbr, xc, rho, T, mass, kind, normal, k, acc):
         acc[i, 1] += a1
         if dim == 3:
             acc[i, 2] += a2
-
-
-@njit(inline="always")
-def _times(T, i, dim, d0, d1, d2):
-    """T_i d as three scalars (the third 0 in 2D)."""
-    if dim == 2:
-        return T[i, 0, 0] * d0 + T[i, 0, 1] * d1, T[i, 1, 0] * d0 + T[i, 1, 1] * d1, 0.0
-    return (T[i, 0, 0] * d0 + T[i, 0, 1] * d1 + T[i, 0, 2] * d2,
-            T[i, 1, 0] * d0 + T[i, 1, 1] * d1 + T[i, 1, 2] * d2,
-            T[i, 2, 0] * d0 + T[i, 2, 1] * d1 + T[i, 2, 2] * d2)
 
 
 @njit(cache=True)
