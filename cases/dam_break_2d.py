@@ -2,8 +2,7 @@
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param, Wall,
-                         density_reinit_param, fluid_stabiliser_param, limiter_param)
+from mpisph.case import Body, Case, Fluid, Param, Wall, density_reinit_param, fluid_stabiliser_params, limiter_param
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -14,10 +13,7 @@ PARAMS = {
     "wall": Param("no_slip", "-", "tank wall condition", choices=("no_slip", "free_slip")),
     "density_reinit": density_reinit_param("free_surface", ("none", "free_surface")),
     "limiter": limiter_param("separating"),
-    "stabiliser": fluid_stabiliser_param("none"),
-    **SHIFTING_PARAMS,
-    **ARTIFICIAL_STRESS_PARAMS,
-    **UTVF_PARAMS,
+    **fluid_stabiliser_params("none"),
     "t_end": Param(0.8, "s", "simulated end time", positive=True),
     "output_interval": Param(0.02, "s", "simulated time between frames", positive=True),
 }

@@ -6,8 +6,7 @@ stabiliser=utvf time_stepping=single`` runs 000_'s method with its single step.
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
-                         density_reinit_param, fluid_stabiliser_param, limiter_param)
+from mpisph.case import Body, Case, Fluid, Param, density_reinit_param, fluid_stabiliser_params, limiter_param
 from mpisph.geometry import disk
 
 PARAMS = {
@@ -17,10 +16,7 @@ PARAMS = {
     "rho0": Param(1000.0, "kg/m^3", "water density", positive=True),
     "c0": Param(1000.0, "m/s", "artificial sound speed (10 A0 R)", positive=True),
     "density_reinit": density_reinit_param("none", ("none", "free_surface")),
-    "stabiliser": fluid_stabiliser_param("none"),
-    **SHIFTING_PARAMS,
-    **ARTIFICIAL_STRESS_PARAMS,
-    **UTVF_PARAMS,
+    **fluid_stabiliser_params("none"),
     "limiter": limiter_param("separating"),
     "t_end": Param(0.008, "s", "simulated end time", positive=True),
     "output_interval": Param(0.0004, "s", "simulated time between frames", positive=True),

@@ -7,8 +7,7 @@ The defaults run a quick patch (dp = L / 50, no stabiliser, dual time stepping, 
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
-                         density_reinit_param, fluid_stabiliser_param, limiter_param)
+from mpisph.case import Body, Case, Fluid, Param, density_reinit_param, fluid_stabiliser_params, limiter_param
 from mpisph.geometry import box
 
 PARAMS = {
@@ -20,10 +19,7 @@ PARAMS = {
                        positive=True),
     "series_terms": Param(40, "-", "odd terms per index in the pressure series", positive=True),
     "density_reinit": density_reinit_param("free_surface", ("none", "free_surface")),
-    "stabiliser": fluid_stabiliser_param("none"),
-    **SHIFTING_PARAMS,
-    **ARTIFICIAL_STRESS_PARAMS,
-    **UTVF_PARAMS,
+    **fluid_stabiliser_params("none"),
     "limiter": limiter_param("separating"),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),

@@ -6,8 +6,7 @@ to t = 5: ``--set jitter=0 --t-end 5``.
 
 import numpy as np
 
-from mpisph.case import (ARTIFICIAL_STRESS_PARAMS, SHIFTING_PARAMS, UTVF_PARAMS, Body, Case, Fluid, Param,
-                         density_reinit_param, fluid_stabiliser_param, limiter_param)
+from mpisph.case import Body, Case, Fluid, Param, density_reinit_param, fluid_stabiliser_params, limiter_param
 from mpisph.geometry import box
 
 PARAMS = {
@@ -17,10 +16,7 @@ PARAMS = {
     "rho0": Param(1.0, "kg/m^3", "density", positive=True),
     "c0": Param(10.0, "m/s", "artificial sound speed (10 U)", positive=True),
     "density_reinit": density_reinit_param("inner", ("none", "inner")),
-    "stabiliser": fluid_stabiliser_param("tvf_limited", also={"tvf_limited": "001_ Eq. 16"}),
-    **SHIFTING_PARAMS,
-    **ARTIFICIAL_STRESS_PARAMS,
-    **UTVF_PARAMS,
+    **fluid_stabiliser_params("tvf_limited", also={"tvf_limited": "001_ Eq. 16"}),
     "limiter": limiter_param("separating"),
     "jitter": Param(0.2, "dp", "amplitude of a seeded random perturbation of the initial lattice"),
     "t_end": Param(1.0, "s", "simulated end time", positive=True),

@@ -20,6 +20,7 @@ from .errors import InputError
 from .kernels import KERNELS
 from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
+from .physics.fluid import LIMITED_PAIRS
 from .stabilisers import stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
 from .stabilisers.shifting import COEFFICIENT
@@ -101,18 +102,24 @@ ARTIFICIAL_STRESS_PARAMS = {
 }
 
 
-def fluid_stabiliser_param(default, also=None):
-    """The parameter naming the stabiliser of a fluid case, with the case's default and, in
-    ``also``, {name: source} of the stabilisers the case offers besides the free-surface ones; such
-    a case also exposes SHIFTING_PARAMS, ARTIFICIAL_STRESS_PARAMS and UTVF_PARAMS."""
+def fluid_stabiliser_params(default, also=None):
+    """The parameters of a fluid case's stabiliser: ``stabiliser`` with the case's default and, in
+    ``also``, {name: source} of the stabilisers the case offers besides the free-surface ones,
+    then those of shifting, artificial stress and UTVF (SHIFTING_PARAMS, ARTIFICIAL_STRESS_PARAMS,
+    UTVF_PARAMS)."""
     also = also or {}
-    return Param(default, "-", "particle regularisation: tvf on inner particles, utvf on all (000_ Eqs. 30-37); "
-                 "shifting (Xu et al. 2009, Khayyer et al. 2017); artificial_stress (Monaghan 2000)"
-                 + "".join(f"; {name} ({source})" for name, source in also.items()),
-                 choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress"))
+    return {"stabiliser": Param(default, "-", "particle regularisation: tvf on inner particles, utvf on all "
+                                "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017); "
+                                "artificial_stress (Monaghan 2000)"
+                                + "".join(f"; {name} ({source})" for name, source in also.items()),
+                                choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress")),
+            **SHIFTING_PARAMS, **ARTIFICIAL_STRESS_PARAMS, **UTVF_PARAMS}
 
 
-def density_reinit_param(default, choices=("none", "inner", "free_surface"), why=""):
+DENSITY_REINITS = ("none", "inner", "free_surface")  # Case.density_reinit (physics/fluid.reinitialise_density)
+
+
+def density_reinit_param(default, choices=DENSITY_REINITS, why=""):
     """The parameter choosing the density reinitialisation (Case.density_reinit), with the case's
     default, the modes it offers and, in ``why``, the case's reason for its default."""
     return Param(default, "-", "density by kernel summation (001_ Eq. 8) every configuration: inner, on every "
@@ -126,7 +133,7 @@ def limiter_param(default):
     of the schemes riemann_fluid and riemann_granular), with the case's default."""
     return Param(default, "-", "pairs the Riemann dissipation limiter damps (separating: the authors' code, "
                  "physics/fluid.py; approaching: 000_'s text; none: no dissipation in the momentum)",
-                 choices=("approaching", "separating", "none"))
+                 choices=tuple(LIMITED_PAIRS))
 
 
 def classic_viscosity_params(alpha, beta, scheme):
@@ -315,8 +322,8 @@ class Case:
         for a in range(self.dim):
             if self.periodic[a] and hi[a] - lo[a] < 2 * support:
                 raise InputError(f"periodic axis {'xyz'[a]} is shorter than twice the kernel support")
-        if self.density_reinit not in ("none", "inner", "free_surface"):
-            raise InputError(f"density_reinit must be none, inner or free_surface, not {self.density_reinit!r}")
+        if self.density_reinit not in DENSITY_REINITS:
+            raise InputError(f"density_reinit must be one of {', '.join(DENSITY_REINITS)}, not {self.density_reinit!r}")
 
 
 def case_names():

@@ -37,7 +37,6 @@ class ForceTerm:
     frozen = False  # fixed over a neighbour configuration: evaluated once per configuration
     uniform = False  # the same acceleration for every particle
     pairwise = True  # a sum over neighbour pairs (the wall forces take these, wall_forces.py)
-    fields = ()  # per-particle fields the term needs besides the scheme's
     ghost_fields = ()  # fields the term reads from neighbours, refreshed before the momentum sum
 
     def add(self, ctx, acc):
@@ -92,10 +91,10 @@ class Forces:
             self.per_configuration, self.per_step = frozen, others
         else:
             self.per_configuration, self.per_step = (), frozen + others
-        self.fields = sum((t.fields for t in self.terms), ())
+        self.fields = ()  # the sum's own fields: the frozen terms' acceleration, kept over a configuration
         if self.per_configuration:
-            self.fields += (Field("prior", ("dim",), np.float64,
-                                  "acceleration of the frozen force terms (gravity, viscosity) [m/s^2]"),)
+            self.fields = (Field("prior", ("dim",), np.float64,
+                                 "acceleration of the frozen force terms (gravity, viscosity) [m/s^2]"),)
         self.ghost_fields = tuple(dict.fromkeys(f for t in self.per_step for f in t.ghost_fields))
 
     def configure(self, ctx):

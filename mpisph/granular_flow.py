@@ -2,6 +2,8 @@
 the scheme and integrator they select, and the grain compressibility of a chosen Mach number."""
 
 from .case import Param
+from .physics.mu_i import (LAW_PRESSURES, LAW_STRAIN_RATES, PRESSURE_FORMS, VISCOSITY_MEANS, VISCOUS_FORMS,
+                          VISCOUS_STEPS, VISCOUS_STRESSES)
 
 MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
 
@@ -32,25 +34,25 @@ def mu_i_params(alpha_doc, viscous_step):
         "alpha": Param(0.0, "-", f"artificial viscosity (Eq. 38; {alpha_doc})"),
         "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
         "viscous_form": Param("cleary", "-", "viscous term: Eq. 27's pair term (its 8 as 2 (D + 2)), or the corrected stress divergence",
-                              choices=("cleary", "corrected_stress")),
+                              choices=VISCOUS_FORMS),
         "viscous_step": Param(viscous_step, "-", "explicit: Eq. 39's viscous limit bounds the step; implicit: the "
                               "viscous term backward in time (physics/implicit_viscosity.py)",
-                              choices=("explicit", "implicit")),
+                              choices=VISCOUS_STEPS),
         "viscous_stress": Param("full", "-", "viscous stress: full, 2 eta eps or Eq. 27's pair term (each with a "
                                 "bulk viscosity), or deviatoric, 2 eta dev(eps), Eq. 4 with no bulk viscosity, or "
                                 "the pair term that tends to its divergence (physics/mu_i.py)",
-                                choices=("full", "deviatoric")),
+                                choices=VISCOUS_STRESSES),
         "viscosity_mean": Param("secant", "-", "viscosity of a particle pair: harmonic (Eq. 37), arithmetic or "
-                                "secant (mu_i_law.pair_viscosity)", choices=("harmonic", "arithmetic", "secant")),
+                                "secant (mu_i_law.pair_viscosity)", choices=VISCOSITY_MEANS),
         "pressure_form": Param("symmetric", "-", "pressure term: symmetric (Eq. 27 as printed) or isotropic, whose "
-                               "pair sum carries no shear stress (physics/mu_i.py)", choices=("symmetric", "isotropic")),
+                               "pair sum carries no shear stress (physics/mu_i.py)", choices=PRESSURE_FORMS),
         "law_pressure": Param("state", "-", "pressure of the friction law: state (Eq. 41), carried, the share of it "
                               "the pairs carry, or carried_mean, its kernel mean (physics/mu_i.py)",
-                              choices=("state", "carried", "carried_mean")),
+                              choices=LAW_PRESSURES),
         "law_strain_rate": Param("own", "-", "strain rate of the friction law: own (each grain's, Eq. 31), "
                                  "kernel_mean, the modulus of its kernel mean, or deviatoric_kernel_mean, that of "
                                  "the mean's deviator (physics/mu_i.py)",
-                                 choices=("own", "kernel_mean", "deviatoric_kernel_mean")),
+                                 choices=LAW_STRAIN_RATES),
     }
 
 

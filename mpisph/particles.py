@@ -97,12 +97,6 @@ class Particles:
     def n_ghost(self):
         return self.n - self.n_owned
 
-    def field(self, name):
-        for f in self.fields:
-            if f.name == name:
-                return f
-        raise KeyError(name)
-
     def width(self, names):
         """Number of float64 columns the named fields take in a packed row."""
         return sum(self._columns[n] for n in names)

@@ -4,13 +4,17 @@ A scheme is a named part a case selects (``Case.scheme``), registered in
 ``mpisph.schemes.SCHEMES``. It owns per-particle fields, does its work once
 per neighbour configuration, gives its force terms and its rates, and says how
 large a time step it allows. It sees the step only through a ``StepContext``
-(context.py). The integrator calls it in this order (integrators/):
+(context.py). The run calls it in this order:
 
-    start(ctx)          once, before the first frame of a run from t = 0
-    configure(ctx)      once per configuration, after the neighbour lists
-    state(ctx)          per step: what the momentum sum reads (pressure, stress),
+    forces()            once, when the run's parts are made (parts.py): the scheme's
+                        force terms, summed with the others every step (forces.py)
+    start(ctx)          once, before the first frame of a run from t = 0 (solver.py)
+    configure(ctx)      once per configuration, after the neighbour lists (solver.py)
+
+and in each step the integrator (integrators/):
+
+    state(ctx)          what the momentum sum reads (pressure, stress),
                         then the integrator refreshes ``state_fields`` on ghosts
-    forces()            the scheme's force terms, summed with the others (forces.py)
     implicit_kick(ctx, dt)  when ``implicit``: after the explicit kick, the part of the
                         kick the scheme takes backward in time (integrators that support it)
     rates(ctx, dt)      per step, after the kick and the drift: the density rate

@@ -1,11 +1,12 @@
 """A Drucker-Prager soil block resting on a floor, at rest under gravity.
 
-Shared by the granular cases (column collapse, cohesive cut, vertical cut, cube
-failure): the material parameters every such case exposes, the choice of scheme
-(``scheme_params``), and the Case of a block with
+Shared by the Drucker-Prager cases (column collapse, cohesive cut, vertical cut, cube
+failure, soil cylinder impact, the flume): the material parameters every such case exposes,
+the choice of scheme (``scheme_params``); and for the first four, the Case of a block with
 geostatic initial stress (or another start, parameter initial_stress) inside a tank of no-slip dummy walls: in 2D the
 block [0, L] x [0, H] against the back wall of a floor ``floor`` long, in 3D
-a cube standing in the middle of a square floor with a low rim.
+a cube standing in the middle of a square floor with a low rim (``confined_layer``: a layer
+filling a tank of free-slip walls, the test case of docs/FLUME.md).
 """
 
 import numpy as np

@@ -68,6 +68,8 @@ RUNS = {
     "inclined_plane": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
                                           "--t-end", "0.01"]),
     "lube_collapse_2d": ("lube_collapse_2d", ["--set", "dp=0.005", "--t-end", "0.06"]),  # the implicit viscous kick
+    "lube_collapse_2d deviatoric": ("lube_collapse_2d", ["--set", "dp=0.005", "viscous_form=corrected_stress",
+                                                         "viscous_stress=deviatoric", "m_0=40", "--t-end", "0.06"]),
 }
 
 

@@ -74,8 +74,9 @@ class SlabDecomposition:
         mean = counts.mean()
         return 0.0 if mean == 0 else counts.max() / mean - 1.0
 
-    def slab(self, rank=None):
-        r = self.comm.rank if rank is None else rank
+    def slab(self):
+        """(lo, hi) of this rank's slab."""
+        r = self.comm.rank
         return self.cuts[r], self.cuts[r + 1]
 
 

@@ -4,12 +4,12 @@ A wall particle j has a wall velocity v_w and an inward normal n_w. In the
 pairwise sums a material particle i sees it with a mirrored velocity: the
 whole relative velocity mirrored for a no-slip wall (v_j = 2 v_w - v_i),
 only its normal part for a free-slip wall. The ghost-particle walls of
-Morris et al. that the mu(I) scheme uses (004_ Eqs. 34-36; its corrected
-viscous stress keeps the mirror, physics/viscous_stress.py) scale the relative
+Morris et al. that the mu(I) scheme and the classic schemes of 002_ use (004_ Eqs. 34-36,
+002_ Eq. 34; mu(I)'s corrected viscous stress keeps the mirror, physics/viscous_stress.py) scale the relative
 velocity by beta = min(beta_max, 1 + d_j/d_i) instead of 2, from the
 distances of the two particles to the wall surface. Densities, pressures and
 stresses of the partner are chosen by each scheme (fluid: hydrostatic
-pressure extrapolation; solids and mu(I): the wall takes the state of
+pressure extrapolation; solids, the classic schemes and mu(I): the wall takes the state of
 particle i).
 
 ``wall_relative_velocity`` (mirror, beta = 2) and ``morris_relative_velocity`` both

@@ -103,7 +103,10 @@ def fill_coefficients(n, knot, h, dim, out):
 
 @njit(cache=True)
 def deform_cells(n, start, nbr, xc, v, mass, rho, kind, k, dt, H):
-    """H <- H + L (I + H) dt with L of Eq. 32, for the moving particles in [0, n)."""
+    """H <- H + L (I + H) dt with L of Eq. 32, for the moving particles in [0, n). A wall partner
+    enters with its own velocity, as a particle at rest would, not mirrored as in the schemes'
+    velocity gradients (physics/velocity_gradient.py): L here tracks the particles' lattice cell,
+    not the continuum's strain rate at the wall."""
     dim = xc.shape[1]
     L = np.empty((dim, dim))
     for i in range(n):

@@ -153,10 +153,9 @@ class ArtificialStressForce(ForceTerm):
 
     name = "artificial_stress"
 
-    def __init__(self, dp, epsilon=EPSILON, exponent=EXPONENT, from_pressure=False):
+    def __init__(self, dp, epsilon, from_pressure=False):
         self.dp = dp
         self.epsilon = epsilon
-        self.exponent = exponent
         self.from_pressure = from_pressure
         self.ghost_fields = ("p",) if from_pressure else ("stress",)
 
@@ -171,7 +170,7 @@ class ArtificialStressForce(ForceTerm):
             raise InputError("the artificial_stress stabiliser needs a fluid or a solid scheme (a stress field)")
         w_dp = w(self.dp, ctx.kernel.params)
         artificial_stress_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.mass, pa.kind, pa.normal, R,
-                                       w_dp, self.exponent, ctx.kernel.params, acc)
+                                       w_dp, EXPONENT, ctx.kernel.params, acc)
 
 
 class ArtificialStress(Stabiliser):
