@@ -199,3 +199,24 @@ def test_soil_cylinder_spreads_after_impact_and_levels_off(tmp_path):
     assert spread[-1] > 0.05 * 1.1 + 0.001
     last = spread[t >= t[-1] - 0.003]
     assert last.max() - last.min() < 0.01 * 0.05
+
+
+def test_clamped_particles_evolve_their_density():
+    """The classic schemes' continuity (mu_i.continuity) gives a clamped particle, held in place, the
+    density rate it would have as a moving one, as the Riemann solids' does (particles.py)."""
+    from mpisph.particles import CLAMPED
+    from mpisph.physics.mu_i import continuity
+
+    rng, x, kind, start, nbr, k, mass, rho = cloud(3)
+    v = rng.normal(size=x.shape)
+    n = len(x)
+    rates = []
+    for clamped in (False, True):
+        kinds = kind.copy()
+        if clamped:
+            kinds[: n // 3] = CLAMPED
+        drho_dt = np.zeros(n)
+        continuity(n, start, nbr, x, v, mass, kinds, np.zeros_like(x), np.zeros(n), 1.5, k.params, drho_dt)
+        rates.append(drho_dt)
+    assert np.abs(rates[0][: n // 3]).min() > 0.0
+    assert np.array_equal(rates[0], rates[1])

@@ -292,9 +292,11 @@ def momentum(n, start, nbr, xc, v, rho, p, eta, gamma_dot, mass, kind, normal, w
 
 @njit(cache=True)
 def continuity(n, start, nbr, xc, v, mass, kind, normal, wall_distance, beta_max, k, drho_dt):
-    """drho_i/dt = sum_j m_j v_ij . grad_i W_ij of the moving particles (004_ Eq. 26)."""
+    """drho_i/dt = sum_j m_j v_ij . grad_i W_ij of the material particles, moving and clamped (004_
+    Eq. 26; the classic schemes take it too, whose clamped particles, held in place, evolve their
+    density as particles.py says)."""
     for i in range(n):
-        if kind[i] != MOVING:
+        if is_wall(kind[i]):
             continue
         acc = 0.0
         for s in range(start[i], start[i + 1]):
