@@ -1,12 +1,13 @@
 """A Drucker-Prager soil block resting on a floor, at rest under gravity.
 
-Shared by the Drucker-Prager cases (column collapse, cohesive cut, vertical cut, cube
-failure, soil cylinder impact, the flume): the material parameters every such case exposes,
-the choice of scheme (``scheme_params``); and for the first four, the Case of a block with
-geostatic initial stress (or another start, parameter initial_stress) inside a tank of no-slip dummy walls: in 2D the
-block [0, L] x [0, H] against the back wall of a floor ``floor`` long, in 3D
-a cube standing in the middle of a square floor with a low rim (``confined_layer``: a layer
-filling a tank of free-slip walls, the test case of docs/FLUME.md).
+Shared by the Drucker-Prager cases: the material and solid-scheme parameters (``soil_params``:
+the column collapse, the cohesive cut, the vertical cut, the cube failure and the flume; the soil
+cylinder impact types its own), the material (``drucker_prager``), the choice between the
+Riemann and the classic scheme (``scheme_params``, ``scheme_choice``), and the Case of a block
+with geostatic initial stress (or another start, parameter initial_stress) inside a tank of
+no-slip dummy walls: in 2D the block [0, L] x [0, H] against the back wall of a floor ``floor``
+long, in 3D a cube standing in the middle of a square floor with a low rim. ``confined_layer``
+is a layer filling a tank of free-slip walls, the test case of docs/FLUME.md.
 """
 
 import numpy as np

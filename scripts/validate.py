@@ -4,11 +4,12 @@
         [--beam-v-f V ...] [--reuse]
 
 Every figure in the page comes from a run made by this script; the command
-of each run is printed in the page beside its result. Every row with a tolerance
-carries a sixth entry, whether it meets it; the script exits non-zero, listing
-them, when one does not (rows whose tolerance is a word, such as "runs", carry
-none). The sections live in scripts/validation/, a module per family of cases;
-this script names them and writes the page.
+of each run is printed in the page beside its result. Every row with a numeric
+tolerance, and some with a worded one ("SPH-AS larger", "converged"), carries a
+sixth entry, whether it meets it; the script exits non-zero, listing them, when
+one does not ("runs" and "surface clusters" carry none). The sections live in
+scripts/validation/, a module per family of cases; this script names them and
+writes the page.
 """
 
 import argparse
