@@ -81,9 +81,7 @@ def main():
         for ranks in (1, 2):
             for _ in range(REPEATS):
                 r = mpirun_python([os.path.join(HERE, "frames.py"), "--worker", str(a.dp), out], ranks=ranks,
-                                  timeout=600)
-                if r.returncode != 0:
-                    raise SystemExit(f"the frame writer failed on {ranks} ranks:\n{r.stderr}")
+                                  timeout=600, accept=(0,))
                 seconds, nbytes, n = r.stdout.split()
                 if ranks not in results or float(seconds) < results[ranks][0]:
                     results[ranks] = float(seconds), int(nbytes), int(n)

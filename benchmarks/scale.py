@@ -155,15 +155,12 @@ def main():
     sys.path.insert(0, os.path.dirname(HERE))
     from mpisph.launch import ROOT, mpirun_mpisph, mpirun_python
     with tempfile.TemporaryDirectory() as out:
-        r = mpirun_mpisph(["flume_3d", "--set", "dp=0.1", "--t-end", "0.01", "--out", out, "--quiet"])  # numba's cache
-        if r.returncode != 0:
-            raise SystemExit(f"the warm-up run failed:\n{r.stderr}")
+        mpirun_mpisph(["flume_3d", "--set", "dp=0.1", "--t-end", "0.01", "--out", out, "--quiet"],
+                      accept=(0,))  # numba's cache
     for ranks in a.ranks:
         with tempfile.TemporaryDirectory(dir=ROOT / "runs") as out:
             args = [os.path.abspath(__file__), "--dp", str(a.dp), "--worker", str(a.steps), out]
-            r = mpirun_python(args, ranks=ranks)
-            if r.returncode != 0:
-                raise SystemExit(f"failed on {ranks} ranks: {' '.join(args)}\n{r.stderr}")
+            r = mpirun_python(args, ranks=ranks, accept=(0,))
             report(json.loads(r.stdout.strip().splitlines()[-1]))
         print(f"  [.venv/bin/python benchmarks/scale.py --dp {a.dp} --ranks {ranks} --steps {a.steps}]", flush=True)
 

@@ -22,20 +22,26 @@ MPI_ENV = {
 }
 
 
-def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT):
+def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT, accept=None):
     """``mpirun -n ranks python -m mpisph args`` from the repository root (or from the tree
     ``root``, another checkout of mpisph, whose code then runs).
 
     Returns the CompletedProcess (stdout and stderr captured as text); a run
     still going after ``timeout`` seconds is killed (subprocess.TimeoutExpired),
-    so a deadlock fails instead of hanging.
+    so a deadlock fails instead of hanging. With ``accept``, a tuple of exit statuses
+    (mpisph exits 3 on a blow-up), a run that ends with another status raises SystemExit
+    with the command and its standard error, which is how scripts and benchmarks stop.
     """
-    return mpirun_python(["-m", "mpisph", *args], ranks=ranks, timeout=timeout, root=root)
+    return mpirun_python(["-m", "mpisph", *args], ranks=ranks, timeout=timeout, root=root, accept=accept)
 
 
-def mpirun_python(args, ranks=1, timeout=None, root=ROOT):
+def mpirun_python(args, ranks=1, timeout=None, root=ROOT, accept=None):
     """``mpirun -n ranks python args`` as ``mpirun_mpisph`` starts it."""
     cmd = ["mpirun", "-n", str(ranks), sys.executable, *map(str, args)]
     env = dict(MPI_ENV, **os.environ)
     env["PYTHONPATH"] = str(root) + os.pathsep + env.get("PYTHONPATH", "")
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)
+    if accept is not None and r.returncode not in accept:
+        shown = " ".join(["mpirun", "-n", str(ranks), "python", *map(str, args)])
+        raise SystemExit(f"{shown} (in {root}) exited with status {r.returncode}:\n{r.stdout[-2000:]}{r.stderr}")
+    return r

@@ -58,9 +58,7 @@ def run(case, ranks):
     out = RUNS / case
     args = [case, "--set", *settings.split(), "--t-end", t_end, "--output-interval", str(float(t_end) / 2),
             "--out", out, "--quiet"]
-    r = mpirun_mpisph(args, ranks=ranks, timeout=1800)
-    if r.returncode != 0:
-        raise SystemExit(f"{case}: the run failed\n{r.stderr[-2000:]}")
+    mpirun_mpisph(args, ranks=ranks, timeout=1800, accept=(0,))
     return list_frames(out)
 
 
