@@ -2,6 +2,8 @@
 
 import numpy as np
 
+from mpisph.particles import MOVING
+
 
 def semi_axes(frame, dp):
     """Half-extents of a body along x and y: max |coordinate| plus half a spacing."""
@@ -264,3 +266,14 @@ def barrier_coefficient(force, density, speed, depth, width):
     with np.errstate(invalid="ignore", divide="ignore"):
         load = density * np.asarray(speed) ** 2 * np.asarray(depth) * width
         return np.where(load > 0, np.asarray(force) / load, np.nan)
+
+
+def max_speed(frame):
+    """The largest speed of a moving particle in ``frame`` (read with its walls or without)."""
+    return float(np.linalg.norm(frame["v"][frame["kind"] == MOVING], axis=1).max())
+
+
+def final_over_peak(speeds):
+    """The last of a run's largest speeds per frame (``max_speed``) over the largest of them: the
+    collapses and the flume count a deposit at rest below 0.01."""
+    return speeds[-1] / max(speeds)

@@ -27,7 +27,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mpisph import pairing, render  # noqa: E402
+from mpisph import measure, pairing, render  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
@@ -228,14 +228,14 @@ def max_speeds(out):
     for path in list_frames(out):
         f = read_frame(path)
         t.append(f["t"])
-        v.append(float(np.linalg.norm(f["v"][f["kind"] == MOVING], axis=1).max()))
+        v.append(measure.max_speed(f))
     return np.array(t), np.array(v)
 
 
 def at_the_end(out):
     """The largest speed of the last frame of ``out`` over its largest over the frames."""
     _, speed = max_speeds(out)
-    return speed[-1] / speed.max()
+    return measure.final_over_peak(speed)
 
 
 def flume_3d(ranks, reuse):
@@ -246,7 +246,7 @@ def flume_3d(ranks, reuse):
     first = read_frame(list_frames(out)[0], walls=True)
     params = first["params"]
     t_frames, speed = max_speeds(out)
-    at_rest = speed[-1] / speed.max()
+    at_rest = measure.final_over_peak(speed)
     moving = d["kinetic_energy"] > 0.01 * d["kinetic_energy"].max()
     imbalance = float(d["imbalance"][moving].max())
     force = d["force_barrier_x"]

@@ -7,6 +7,7 @@ import pytest
 from mpisph import measure
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.kernels import Kernel
+from mpisph.particles import MOVING, WALL
 
 DP = 0.01
 
@@ -43,6 +44,14 @@ def test_front_speed_and_decay_rate_are_least_squares_slopes():
     assert measure.front_speed(T, z, 1.0, 4.0) == pytest.approx(2.0, rel=1e-12)
     t = np.linspace(0.0, 5.0, 51)
     assert measure.decay_rate(t, 3.0 * np.exp(-1.5791 * t)) == pytest.approx(-1.5791, rel=1e-12)
+
+
+def test_max_speed_counts_moving_particles_only_and_rest_is_the_last_over_the_largest():
+    """A wall particle faster than every moving one (frames read with their walls) is not counted."""
+    v = np.array([[3.0, 4.0], [0.0, -2.0], [30.0, 40.0]])
+    frame = {"v": v, "kind": np.array([MOVING, MOVING, WALL])}
+    assert measure.max_speed(frame) == 5.0
+    assert measure.final_over_peak([0.0, 5.0, 2.0, 0.04]) == pytest.approx(0.008, rel=1e-15)
 
 
 def test_time_offset_recovers_a_known_shift():

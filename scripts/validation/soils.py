@@ -42,15 +42,15 @@ def column_collapse(ranks):
         ax[2 * k].legend(fontsize=7, ncol=4)
         deposit_panel(fig, ax[2 * k + 1], last, frames[0], f"L = {L} m, t = {last['t']:.1f} s")
         energy = diag["kinetic_energy"] + diag["potential_energy"]
-        speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
+        speeds = [measure.max_speed(f) for f in frames]
         runout, top = measure.runout(last, dp), measure.deposit_height(last, dp, 0.05)
-        ratio, final_over_peak = energy[-1] / energy[0], speeds[-1] / max(speeds)
+        ratio, final_over_peak = energy[-1] / energy[0], measure.final_over_peak(speeds)
         if L == 0.2:
             cmd = shown
             settled, _, _ = run("column_collapse_2d_settled", "column_collapse_2d",
                                 ["--restart", str(list_frames(run_directory(f"column_collapse_2d_L{L}"))[-1]),
                                  "--set", "stabiliser=none", "--t-end", "1.15"], ranks)
-            still = np.linalg.norm(settled[-1]["v"], axis=1).max() / max(speeds)
+            still = measure.max_speed(settled[-1]) / max(speeds)
             # 000_'s stress diffusion (Feng et al.'s geostatic form) beside the default
             feng, feng_diag, _ = run("column_collapse_2d_geostatic_diffusion", "column_collapse_2d",
                                      ["--set", f"dp={dp}", f"L={L}", "stress_diffusion=geostatic"], ranks)
@@ -92,8 +92,7 @@ def column_collapse(ranks):
 
 def final_over_peak_speed(frames):
     """The largest particle speed of the last frame over its largest value over the frames."""
-    speeds = [np.linalg.norm(f["v"], axis=1).max() for f in frames]
-    return speeds[-1] / max(speeds)
+    return measure.final_over_peak([measure.max_speed(f) for f in frames])
 
 
 def cohesive_failure(ranks):
