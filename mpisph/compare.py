@@ -59,23 +59,29 @@ def parse(argv):
     return a
 
 
-def _overrides(items):
+def set_overrides(items):
+    """The parameters of ``--set``; InputError for a stabiliser among them."""
     out = parse_sets(items)
     if "stabiliser" in out:
         raise InputError("the stabilisers are chosen by --stabiliser, not --set")
     return out
 
 
-def check(case_name, stabilisers, overrides):
-    """The case module and one Case of it (for domain and walls); InputError for a case without a
-    ``stabiliser`` parameter or a stabiliser it does not take."""
-    module = load_case_module(case_name)
+def check_stabilisers(case_name, module, stabilisers, overrides):
+    """InputError for a case (its name and module) without a ``stabiliser`` parameter, an empty
+    list of ``stabilisers`` or one the case does not take beside ``overrides``."""
     if "stabiliser" not in module.PARAMS:
         raise InputError(f"case {case_name!r} has no stabiliser parameter to compare")
     if not stabilisers:
         raise InputError("--stabiliser names no stabiliser")
     for name in stabilisers:
         resolve_params(module, {**overrides, "stabiliser": name})
+
+
+def check(case_name, stabilisers, overrides):
+    """The case module and one Case of it (for domain and walls), after ``check_stabilisers``."""
+    module = load_case_module(case_name)
+    check_stabilisers(case_name, module, stabilisers, overrides)
     return module, build_case(module, resolve_params(module, overrides))
 
 
@@ -203,7 +209,7 @@ def pictures(runs, colour, out):
 def main(argv):
     a = parse(argv)
     names = tuple(t.strip() for t in a.stabiliser.split(",") if t.strip())  # one run each: none is a run too
-    overrides = _overrides(a.overrides)
+    overrides = set_overrides(a.overrides)
     _, case = check(a.case, names, overrides)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute
     case_arg = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case

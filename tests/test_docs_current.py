@@ -112,10 +112,11 @@ def check(argv):
     elif head == "compare":
         a = compare.parse(_without_placeholders(argv[1:]))
         module = _case(a.case)
+        compare.set_overrides(a.overrides)
         _check_sets(module, a.overrides)
-        for name in a.stabiliser.split(","):
-            if not PLACEHOLDER.search(name):
-                resolve_params(module, {"stabiliser": name})
+        names = [name for name in a.stabiliser.split(",") if not PLACEHOLDER.search(name)]
+        if names or "stabiliser" not in module.PARAMS:
+            compare.check_stabilisers(a.case, module, names, {})
     else:
         a = _parser().parse_args(_without_placeholders(argv))
         _check_sets(_case(a.case), a.overrides)
@@ -144,6 +145,8 @@ def test_documented_command_parses(where):
     (["inclined_plane", "--set", "H=deep"], "takes a float"),
     (["lube_collapse_2d", "--set", "viscous_step=implicit|semi"], "must be one of"),
     (["compare", "vertical_cut", "--stabiliser", "none,utvf,tvd"], "must be one of"),
+    (["compare", "vertical_cut", "--stabiliser", "none", "--set", "stabiliser=utvf"], "chosen by --stabiliser"),
+    (["compare", "dam_break_3d", "--stabiliser", "none,utvf"], "has no stabiliser parameter"),
     (["cube_failure_3d", "--t-end", "1", "--frames", "3"], "unrecognized"),
     (["no_such_case"], "unknown case"),
 ])
