@@ -12,11 +12,12 @@ them, when a figure of the default run misses what issue 15 asks: clustering abo
 (tensile_instability, checked in 3D), a flume deposit not at rest (largest speed at the end at
 least 1 % of its peak) or a load imbalance of 15 % or more while the mass moves. The section
 cube_band_start follows where the cube's plastic strain starts with each initial stress. ``--reuse``
-measures the runs already in runs/production/ instead of running them again, and runs only those
-not there yet.
+measures the runs already in runs/production/ that the same command, rank count and committed code
+made (their stamp, as validate.py's) instead of running them again, and runs the others.
 """
 
 import argparse
+import json
 import re
 from pathlib import Path
 from types import SimpleNamespace
@@ -38,11 +39,13 @@ from mpisph.soil import drucker_prager  # noqa: E402
 import make_flume_stl as flume  # noqa: E402  (this directory: the flume's dimensions)
 from clustered import CLASSES, beside_an_edge, shifted_on_the_surface  # noqa: E402  (this directory)
 from validation import page  # noqa: E402  (the same page sections as docs/VALIDATION.md)
+from validation.runs import has_stamp, stamp_of  # noqa: E402  (and the same stamps of runs)
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 IMG = DOCS / "img"
 RUNS = ROOT / "runs" / "production"
+STAMP = "production_run.json"
 PAGE = DOCS / "PRODUCTION_3D.md"
 
 
@@ -50,13 +53,18 @@ def run(case, args, ranks, reuse, name=None):
     """The output directory (runs/production/``name``, by default the case's name), the command, the
     wall time, the throughput per core and the blow-up message (None for a run that ended) of a run;
     a blown-up run is measured up to its last frame, its wall time and throughput taken from its last
-    progress line."""
+    progress line. With ``reuse``, a run of the same stamp (stamp_of) is read, not run again."""
     out = RUNS / (name or case)
     shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}".strip()
-    log = out / "run.log"
-    if not (reuse and log.exists()):
+    log, stamp = out / "run.log", stamp_of(case, args, ranks)
+    if reuse and log.exists() and has_stamp(out / STAMP, stamp):
+        print(f"  reusing {out} (same command and code)")
+    else:
+        (out / STAMP).unlink(missing_ok=True)
         r = mpirun_mpisph([case, *args, "--out", out], ranks=ranks, accept=(0, 3))
         log.write_text(r.stdout + r.stderr)
+        if stamp["code"] is not None:
+            (out / STAMP).write_text(json.dumps(stamp))
     text = log.read_text()
     blow_up = re.search(r"^mpisph: (blow-up .*)$", text, re.M)
     if blow_up is None:

@@ -30,6 +30,17 @@ def code_version():
     return git("rev-parse", "HEAD:mpisph", "HEAD:cases").split()
 
 
+def stamp_of(case, args, ranks):
+    """What a run's bits depend on: its case, arguments, rank count and committed code."""
+    return {"case": case, "args": [str(a) for a in args], "ranks": ranks, "code": code_version()}
+
+
+def has_stamp(path, stamp):
+    """Whether the stamp file ``path`` records ``stamp``; never for uncommitted code (code None)."""
+    return (stamp["code"] is not None and path.exists()
+            and {k: json.loads(path.read_text()).get(k) for k in stamp} == stamp)
+
+
 def run_directory(name):
     """Where the run ``name`` writes its frames: runs/validation/NAME."""
     return RUNS / name
@@ -42,18 +53,14 @@ def run(name, case, args, ranks, blow_up_ok=False):
     and one that was interrupted (its partial stamp, written at its start) continues from its last
     frame (a restart gives the bits of an uninterrupted run: tests/test_stop_on_signal.py)."""
     out = run_directory(name)
-    stamp = {"case": case, "args": [str(a) for a in args], "ranks": ranks, "code": code_version()}
+    stamp = stamp_of(case, args, ranks)
     done, started = out / STAMP, out / PARTIAL_STAMP
-
-    def same(path):
-        return path.exists() and {k: json.loads(path.read_text()).get(k) for k in stamp} == stamp
-
-    if REUSE and stamp["code"] and same(done):
+    if REUSE and has_stamp(done, stamp):
         returncode = json.loads(done.read_text())["returncode"]
         print(f"  reusing {out} (same command and code)")
     else:
         restart = []
-        if REUSE and stamp["code"] and same(started) and list_frames(out):
+        if REUSE and has_stamp(started, stamp) and list_frames(out):
             restart = ["--restart", list_frames(out)[-1]]
             print(f"  continuing {out} from {restart[1]} (same command and code)")
         done.unlink(missing_ok=True)
