@@ -4,7 +4,7 @@ import re
 import tempfile
 from dataclasses import dataclass
 
-from mpisph.launch import ROOT, mpirun_mpisph
+from mpisph.launch import ROOT, command_line, mpirun_mpisph
 
 
 @dataclass
@@ -24,7 +24,7 @@ def run_case(case, ranks, args, root=ROOT):
     ``root``, by default this one); returns a ``Run``."""
     with tempfile.TemporaryDirectory() as out:
         r = mpirun_mpisph([case, *map(str, args), "--out", out], ranks=ranks, root=root, accept=(0,))
-    shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(map(str, args))}"
+    shown = command_line(["-m", "mpisph", case, *args], ranks)
     m = re.search(r"throughput: (\S+) particle-steps/s/core on \d+ rank\(s\), (\d+) particles, (\d+) steps, "
                   r"(\d+) neighbour configurations", r.stdout)
     shares = {k: float(v) for k, v in re.findall(r"(\w+) ([\d.]+)%", r.stdout.split("timing:")[1])}

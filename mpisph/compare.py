@@ -59,6 +59,11 @@ def parse(argv):
     return a
 
 
+def stabiliser_names(text):
+    """The stabilisers of ``--stabiliser A,B,...``, one run each (``none`` is a run too)."""
+    return tuple(t.strip() for t in text.split(",") if t.strip())
+
+
 def set_overrides(items):
     """The parameters of ``--set``; InputError for a stabiliser among them."""
     out = parse_sets(items)
@@ -208,7 +213,7 @@ def pictures(runs, colour, out):
 
 def main(argv):
     a = parse(argv)
-    names = tuple(t.strip() for t in a.stabiliser.split(",") if t.strip())  # one run each: none is a run too
+    names = stabiliser_names(a.stabiliser)
     overrides = set_overrides(a.overrides)
     _, case = check(a.case, names, overrides)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute

@@ -30,7 +30,8 @@ def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT, accept=None):
     still going after ``timeout`` seconds is killed (subprocess.TimeoutExpired),
     so a deadlock fails instead of hanging. With ``accept``, a tuple of exit statuses
     (mpisph exits 3 on a blow-up), a run that ends with another status raises SystemExit
-    with the command and its standard error, which is how scripts and benchmarks stop.
+    with the command, the tree, the last 2000 characters of its output and its standard
+    error, which is how scripts and benchmarks stop.
     """
     return mpirun_python(["-m", "mpisph", *args], ranks=ranks, timeout=timeout, root=root, accept=accept)
 
@@ -42,6 +43,11 @@ def mpirun_python(args, ranks=1, timeout=None, root=ROOT, accept=None):
     env["PYTHONPATH"] = str(root) + os.pathsep + env.get("PYTHONPATH", "")
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)
     if accept is not None and r.returncode not in accept:
-        shown = " ".join(["mpirun", "-n", str(ranks), "python", *map(str, args)])
-        raise SystemExit(f"{shown} (in {root}) exited with status {r.returncode}:\n{r.stdout[-2000:]}{r.stderr}")
+        raise SystemExit(f"{command_line(args, ranks)} (in {root}) exited with status {r.returncode}:\n"
+                         f"{r.stdout[-2000:]}{r.stderr}")
     return r
+
+
+def command_line(args, ranks=1):
+    """``mpirun -n ranks python args`` as a user would type it, for pages and messages."""
+    return " ".join(["mpirun", "-n", str(ranks), "python", *map(str, args)])

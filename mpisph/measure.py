@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mpisph.particles import MOVING
+from .particles import MOVING
 
 
 def semi_axes(frame, dp):
@@ -275,5 +275,5 @@ def max_speed(frame):
 
 def final_over_peak(speeds):
     """The last of a run's largest speeds per frame (``max_speed``) over the largest of them: the
-    collapses and the flume count a deposit at rest below 0.01."""
-    return speeds[-1] / max(speeds)
+    Drucker-Prager column collapse and the 3D flume count a deposit at rest below 0.01."""
+    return speeds[-1] / np.max(speeds)

@@ -32,7 +32,7 @@ from mpisph import measure, pairing, render  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
-from mpisph.launch import mpirun_mpisph  # noqa: E402
+from mpisph.launch import command_line, mpirun_mpisph  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
 from mpisph.soil import drucker_prager  # noqa: E402
 
@@ -55,12 +55,13 @@ def run(case, args, ranks, reuse, name=None):
     a blown-up run is measured up to its last frame, its wall time and throughput taken from its last
     progress line. With ``reuse``, a run of the same stamp (stamp_of) is read, not run again."""
     out = RUNS / (name or case)
-    shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}".strip()
+    shown = command_line(["-m", "mpisph", case, *args], ranks)
     log, stamp = out / "run.log", stamp_of(case, args, ranks)
     if reuse and log.exists() and has_stamp(out / STAMP, stamp):
         print(f"  reusing {out} (same command and code)")
     else:
-        (out / STAMP).unlink(missing_ok=True)
+        for earlier in (out / STAMP, log):  # a failed run leaves neither behind
+            earlier.unlink(missing_ok=True)
         r = mpirun_mpisph([case, *args, "--out", out], ranks=ranks, accept=(0, 3))
         log.write_text(r.stdout + r.stderr)
         if stamp["code"] is not None:
@@ -427,7 +428,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--only", nargs="*", choices=list(RUNNERS))
-    ap.add_argument("--reuse", action="store_true", help="measure the runs already in runs/production/, run the others")
+    ap.add_argument("--reuse", action="store_true", help="measure the runs in runs/production/ of the same command, rank count and committed code "
+                    "(their stamp), run the others")
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     RUNS.mkdir(parents=True, exist_ok=True)

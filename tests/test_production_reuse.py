@@ -18,7 +18,7 @@ def production(tmp_path, monkeypatch):
     return production
 
 
-def test_reuse_reads_only_a_run_of_the_same_stamp(production, tmp_path, monkeypatch, capsys):
+def test_reuse_reads_only_a_run_of_the_same_stamp(production, tmp_path, capsys):
     log = tmp_path / "beam" / "run.log"
     first = production.run("oscillating_beam", BEAM, 1, True, name="beam")
     assert "reusing" not in capsys.readouterr().out
@@ -29,9 +29,16 @@ def test_reuse_reads_only_a_run_of_the_same_stamp(production, tmp_path, monkeypa
     assert "reusing" not in capsys.readouterr().out and log.stat().st_mtime_ns != written
 
 
-def test_a_run_of_uncommitted_code_is_never_reused(production, tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(load_package("validation.runs"), "code_version", lambda: None)
-    for _ in range(2):
-        production.run("oscillating_beam", BEAM, 1, True, name="beam")
-        assert "reusing" not in capsys.readouterr().out
-    assert not (tmp_path / "beam" / production.STAMP).exists()
+@pytest.mark.parametrize("other_code", [["another-tree-of-mpisph", "tree-of-cases"], None],
+                         ids=["committed", "uncommitted"])
+def test_a_run_of_other_code_is_run_again(production, tmp_path, monkeypatch, capsys, other_code):
+    """A finished, stamped run read with other committed code, or with uncommitted changes (no
+    version, no stamp), is run again."""
+    log, stamp = tmp_path / "beam" / "run.log", tmp_path / "beam" / production.STAMP
+    production.run("oscillating_beam", BEAM, 1, True, name="beam")
+    written = log.stat().st_mtime_ns
+    assert stamp.exists()
+    monkeypatch.setattr(load_package("validation.runs"), "code_version", lambda: other_code)
+    production.run("oscillating_beam", BEAM, 1, True, name="beam")
+    assert "reusing" not in capsys.readouterr().out and log.stat().st_mtime_ns != written
+    assert stamp.exists() == (other_code is not None)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.launch import mpirun_mpisph
+from mpisph.launch import command_line, mpirun_mpisph
 
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -64,16 +64,16 @@ def run(name, case, args, ranks, blow_up_ok=False):
             restart = ["--restart", list_frames(out)[-1]]
             print(f"  continuing {out} from {restart[1]} (same command and code)")
         done.unlink(missing_ok=True)
-        if stamp["code"]:
+        if stamp["code"] is not None:
             out.mkdir(parents=True, exist_ok=True)
             started.write_text(json.dumps(stamp))
         returncode = mpirun_mpisph([case, *args, *restart, "--out", out, "--quiet"], ranks=ranks,
                                    accept=(0, 3) if blow_up_ok else (0,)).returncode
-        if stamp["code"]:
+        if stamp["code"] is not None:
             done.write_text(json.dumps(dict(stamp, returncode=returncode)))
             started.unlink()
     if returncode != 0 and not blow_up_ok:  # a reused run that blew up, read where that is not allowed
         raise SystemExit(f"{case} {' '.join(args)}: blew up (exit 3); its frames are in {out}")
-    shown = f"mpirun -n {ranks} python -m mpisph {case} {' '.join(args)}"
+    shown = command_line(["-m", "mpisph", case, *args], ranks)
     frames = [read_frame(f) for f in list_frames(out)]
     return frames, read_diagnostics(out / "diagnostics.csv"), shown

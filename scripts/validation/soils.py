@@ -91,7 +91,7 @@ def column_collapse(ranks):
 
 
 def final_over_peak_speed(frames):
-    """The largest particle speed of the last frame over its largest value over the frames."""
+    """The largest speed of a moving particle in the last frame over its largest over the frames."""
     return measure.final_over_peak([measure.max_speed(f) for f in frames])
 
 
