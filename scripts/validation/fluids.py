@@ -51,7 +51,7 @@ def elliptical_drop(ranks):
     note = ("Without a particle regularisation the drop's particles, squeezed 2:1 in x and stretched "
             "2:1 in y, end in rows 2 dp apart: the tensile-instability measure counts most particles as "
             "next to a void, and the flanks bulge (x semi-axis). The unified transport-velocity "
-            "formulation of 000_ (next issue) is what removes this.")
+            "formulation of 000_ (`--set stabiliser=utvf`, next section) is what removes this.")
     return "Elliptical drop (dp = 0.02)", cmd, rows, image, note
 
 

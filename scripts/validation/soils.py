@@ -82,7 +82,7 @@ def column_collapse(ranks):
             "The granular Riemann limiter damps pairs that move apart, as the paper's code does "
             "(mpisph/physics/solid.py says why); damping approaching pairs instead, as the text of the printed "
             "Eq. 20 suggests, gave a runout of 0.413 m here (0.401 m without a stabiliser), with grains sliding "
-            "ahead of the deposit. The thin toe still creeps under UTVF in the L = 0.1 run (row above) and at "
+            "ahead of the deposit. The thin toe still creeps under UTVF at "
             "coarser spacings (1.5-3 % of the peak speed at t = 1 s for L = 0.2, dp = 0.005), driven by the "
             "tangential shift of the toe's surface particles; "
             "the row 'without the UTVF shift' continues the last frame for 0.15 s with "
