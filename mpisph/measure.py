@@ -277,3 +277,9 @@ def final_over_peak(speeds):
     """The last of a run's largest speeds per frame (``max_speed``) over the largest of them: the
     Drucker-Prager column collapse and the 3D flume count a deposit at rest below 0.01."""
     return speeds[-1] / np.max(speeds)
+
+
+def final_over_peak_speed(frames):
+    """``final_over_peak`` of the ``max_speed`` of each of ``frames`` (a generator reads them one
+    at a time)."""
+    return final_over_peak([max_speed(f) for f in frames])

@@ -243,8 +243,7 @@ def max_speeds(out):
 
 def at_the_end(out):
     """The largest speed of the last frame of ``out`` over its largest over the frames."""
-    _, speed = max_speeds(out)
-    return measure.final_over_peak(speed)
+    return measure.final_over_peak_speed(read_frame(path) for path in list_frames(out))
 
 
 def flume_3d(ranks, reuse):
@@ -428,8 +427,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--only", nargs="*", choices=list(RUNNERS))
-    ap.add_argument("--reuse", action="store_true", help="measure the runs in runs/production/ of the same command, rank count and committed code "
-                    "(their stamp), run the others")
+    ap.add_argument("--reuse", action="store_true",
+                    help="measure the runs in runs/production/ of the same command, rank count and committed "
+                         "code (their stamp), run the others")
     a = ap.parse_args()
     IMG.mkdir(parents=True, exist_ok=True)
     RUNS.mkdir(parents=True, exist_ok=True)

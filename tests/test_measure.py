@@ -52,6 +52,8 @@ def test_max_speed_counts_moving_particles_only_and_rest_is_the_last_over_the_la
     frame = {"v": v, "kind": np.array([MOVING, MOVING, WALL])}
     assert measure.max_speed(frame) == 5.0
     assert measure.final_over_peak([0.0, 5.0, 2.0, 0.04]) == pytest.approx(0.008, rel=1e-15)
+    frames = ({"v": scale * v, "kind": frame["kind"]} for scale in (1.0, 0.1))
+    assert measure.final_over_peak_speed(frames) == pytest.approx(0.1, rel=1e-15)
 
 
 def test_time_offset_recovers_a_known_shift():

@@ -66,7 +66,7 @@ def column_collapse(ranks):
                       f"{ratio - 0.69:+.3f}", "+- 0.05", abs(ratio - 0.69) <= 0.05),
                      ("L = 0.2, stress_diffusion=geostatic (000_): runout [m] / top [m] / final / peak max speed "
                       "/ energy ratio", f"{measure.runout(feng[-1], dp):.3f} / "
-                      f"{measure.deposit_height(feng[-1], dp, 0.05):.4f} / {final_over_peak_speed(feng):.4f} / "
+                      f"{measure.deposit_height(feng[-1], dp, 0.05):.4f} / {measure.final_over_peak_speed(feng):.4f} / "
                       f"{feng_energy[-1] / feng_energy[0]:.3f}", "0.32-0.38 / 0.1 / 0 / 0.69 +- 0.03", "-", "-")]
         else:
             rows += [("L = 0.1: runout [m] / top [m]", f"{runout:.3f} / {top:.4f}", "-", "-", "runs"),
@@ -88,11 +88,6 @@ def column_collapse(ranks):
             "the row 'without the UTVF shift' continues the last frame for 0.15 s with "
             "`--set stabiliser=none`.")
     return "Granular column collapse, L = 0.2 m and 0.1 m (dp = 0.002)", cmd, rows, image, note
-
-
-def final_over_peak_speed(frames):
-    """The largest speed of a moving particle in the last frame over its largest over the frames."""
-    return measure.final_over_peak([measure.max_speed(f) for f in frames])
 
 
 def cohesive_failure(ranks):
@@ -118,7 +113,7 @@ def cohesive_failure(ranks):
             crack = measure.crest_crack(frames[0], frames[-1], dp, 4.0, 0.05 * 2.0)
             rows.insert(0, ("crest crack behind the face [m]", f"{crack:.2f}", "1.2-1.5", "-", "[1.0, 1.7]",
                             1.0 <= crack <= 1.7))
-            rows.insert(1, ("final / peak max speed", f"{final_over_peak_speed(frames):.3f}", "0", "-", "-"))
+            rows.insert(1, ("final / peak max speed", f"{measure.final_over_peak_speed(frames):.3f}", "0", "-", "-"))
             shown = cmd
     # 000_'s stress diffusion, Feng et al.'s geostatic form (physics/drucker_prager.py)
     feng, _, _ = run("cohesive_failure_2d_utvf_geostatic_diffusion", "cohesive_failure_2d",
@@ -127,7 +122,7 @@ def cohesive_failure(ranks):
     m = tensile_instability(read_frame(list_frames(run_directory("cohesive_failure_2d_utvf_geostatic_diffusion"))[-1],
                                        walls=True))
     rows.append(("utvf, stress_diffusion=geostatic (000_): crest crack [m] / final / peak max speed / clustering "
-                 "at 2 s", f"{crack:.2f} / {final_over_peak_speed(feng):.3f} / {100 * m['clustering']:.2f}%",
+                 "at 2 s", f"{crack:.2f} / {measure.final_over_peak_speed(feng):.3f} / {100 * m['clustering']:.2f}%",
                  "1.2-1.5 / 0 / 0", "-", "-"))
     image = save(fig, "cohesive_failure_2d.png")
     note = ("Crest crack: the leftmost particle of the initial top layer that sank by more than 0.05 H. "
