@@ -280,6 +280,5 @@ def final_over_peak(speeds):
 
 
 def final_over_peak_speed(frames):
-    """``final_over_peak`` of the ``max_speed`` of each of ``frames`` (a generator reads them one
-    at a time)."""
+    """``final_over_peak`` of the ``max_speed`` of each of ``frames``."""
     return final_over_peak([max_speed(f) for f in frames])
