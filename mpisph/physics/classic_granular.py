@@ -53,7 +53,8 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import SYM3, unpack_row
-from .drucker_prager import PLASTIC_STRAIN, plastic_stress_rate, return_mapping
+from .drucker_prager import (NO_DIFFUSION, PLASTIC_STRAIN, plastic_stress_rate, return_mapping,
+                             strain_of_multiplier, strain_of_return)
 from .fluid import reinitialise_density
 from .mu_i import continuity
 from .solid import STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times, velocity_gradient
@@ -119,18 +120,17 @@ def classic_stress_rate(n, start, nbr, xc, v, mass, rho, kind, normal, wall_dist
     rate = np.empty((3, 3))
     sig = np.empty((3, 3))
     plain = np.zeros((0, 1))  # no correction matrix
-    no_diffusion = np.zeros((0, 6))
     for i in range(n):
         if is_wall(kind[i]):
             continue
         velocity_gradient(i, start, nbr, xc, v, mass, rho, kind, normal, wall_distance, chi_max, plain, k, L)
         unpack_row(stress, i, sig)
-        gamma_dot = plastic_stress_rate(L, sig, dev, no_diffusion, i, K, G, alpha_phi, alpha_psi, k_c, rate)
+        gamma_dot = plastic_stress_rate(L, sig, dev, NO_DIFFUSION, i, K, G, alpha_phi, alpha_psi, k_c, rate)
         for a in range(3):  # symmetric to the bit: every rate term is formed symmetrically
             for b in range(a, 3):
                 stress_rate[i, SYM3[a, b]] = rate[a, b]
         if plastic_rate.shape[0] > 0:
-            plastic_rate[i] = gamma_dot / math.sqrt(3.0)
+            plastic_rate[i] = strain_of_multiplier(gamma_dot)
 
 
 @njit(cache=True)
@@ -147,7 +147,7 @@ def scale_back(n, kind, alpha_phi, k_c, G, stress, plastic_strain):
         for a in range(3):
             for b in range(a, 3):
                 stress[i, SYM3[a, b]] = sig[a, b]
-        plastic_strain[i] += math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
+        plastic_strain[i] += strain_of_return(ds, G)
 
 
 class ClassicStress(ForceTerm):

@@ -19,7 +19,8 @@ Plastic flow in the rate (Eq. 10) is applied only while the multiplier rate
 is positive (loading); on unloading from the yield surface the rate is
 elastic. The accumulated deviatoric plastic strain adds dt gamma_dot / sqrt(3)
 (the equivalent measure sqrt(2/3 e:e) of the deviatoric part of
-gamma_dot dg/dsigma) and, for the return mapping, sqrt(2/3) |Delta s| / 2G.
+gamma_dot dg/dsigma) and, for the return mapping, sqrt(2/3) |Delta s| / 2G
+(``strain_of_multiplier``, ``strain_of_return``; the classic scheme adds the same).
 
 Stress diffusion smooths the stress over material neighbours with zeta = 0.1.
 The default (``stress_diffusion = "linear"``) diffuses each component less
@@ -240,6 +241,21 @@ def return_mapping(sig, alpha_phi, k_c, dev):
 
 
 @njit(inline="always")
+def strain_of_multiplier(gamma):
+    """The accumulated deviatoric plastic strain of the plastic multiplier ``gamma`` (a rate gives a
+    rate): gamma / sqrt(3), the equivalent measure sqrt(2/3 e:e) of the deviatoric part of
+    gamma dg/dsigma."""
+    return gamma / math.sqrt(3.0)
+
+
+@njit(inline="always")
+def strain_of_return(ds, G):
+    """The accumulated deviatoric plastic strain of a return to the yield surface that removed
+    |Delta s| = ``ds`` of the deviator (``return_mapping``): sqrt(2/3) ds / 2G."""
+    return math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
+
+
+@njit(inline="always")
 def plastic_stress_rate(L, sig, dev, diffusion, i, K, G, alpha_phi, alpha_psi, k_c, rate):
     """rate = the stress rate of 000_ Eq. 10 (002_ Eq. 28) of the 3 x 3 ``sig`` under the
     velocity gradient ``L``, plus row i of the packed ``diffusion`` when it has rows; returns the
@@ -289,7 +305,7 @@ def drucker_prager_update(n, start, nbr, xc, v, mass, rho, kind, normal, wall_di
             for b in range(3):
                 sig[a, b] += dt * rate[a, b]
         ds = return_mapping(sig, alpha_phi, k_c, dev)
-        plastic_strain[i] += dt * gamma_dot / math.sqrt(3.0) + math.sqrt(2.0 / 3.0) * ds / (2.0 * G)
+        plastic_strain[i] += strain_of_multiplier(dt * gamma_dot) + strain_of_return(ds, G)
         for a in range(3):  # sig stays symmetric to the bit: every rate term is formed symmetrically
             for b in range(a, 3):
                 stress[i, SYM3[a, b]] = sig[a, b]
