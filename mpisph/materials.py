@@ -19,8 +19,16 @@ from .errors import InputError
 from .physics.mu_i_law import MuIParams, friction, residual_viscosity
 
 
+class LinearEquationOfState:
+    """The pressure p = c0^2 (rho - rho0) of a fluid and of a linear elastic solid (000_ Eqs. 3, 5)."""
+
+    def density_under(self, p):
+        """The density at pressure p, rho0 + p / c0^2 [kg/m^3]."""
+        return self.rho0 + p / self.c0**2
+
+
 @dataclass
-class Fluid:
+class Fluid(LinearEquationOfState):
     """Weakly compressible fluid (000_ Eq. 3, 001_ Eqs. 1-7)."""
 
     rho0: float
@@ -53,7 +61,7 @@ class ElasticConstants:
 
 
 @dataclass
-class ElasticSolid(ElasticConstants):
+class ElasticSolid(ElasticConstants, LinearEquationOfState):
     """Linear elastic solid: density, Young's modulus, Poisson's ratio."""
 
 
@@ -144,8 +152,8 @@ class MuIGranular:
         """Sound speed at rest, sqrt(dp/drho) = 1/sqrt(K_t phi_max rho_s0) (Eqs. 9, 41) [m/s]."""
         return 1.0 / math.sqrt(self.K_t * self.rho0)
 
-    def density_at_rest(self, p):
-        """Bulk density of grains at rest under pressure p: phi_max rho_s0 (1 + K_t p) (Eqs. 9, 41)."""
+    def density_under(self, p):
+        """Bulk density of grains at rest at pressure p: phi_max rho_s0 (1 + K_t p) (Eqs. 9, 41)."""
         return self.rho0 * (1.0 + self.K_t * p)
 
     def eta_max(self, tau_y):

@@ -69,8 +69,9 @@ class Scheme:
         return value
 
     def initial_density(self, pressure):
-        """Density of the material particles that gives ``pressure``."""
-        raise NotImplementedError
+        """Density of the material particles that gives ``pressure``: the material's
+        ``density_under``. The schemes that integrate the stress itself start from rho0."""
+        return self.material.density_under(pressure)
 
     @property
     def sound_speed(self):

@@ -22,6 +22,7 @@ from numba import njit
 from ..materials import ElasticSolid
 from ..particles import Field, is_wall
 from ..tensors import SYM3, unpack_row
+from .fluid import linear_pressure
 from .solid import SolidScheme, jaumann_rate, strain_energy, velocity_gradient
 
 
@@ -31,7 +32,7 @@ def elastic_pressure(n, kind, rho, rho0, c0, shear, p, stress):
     for i in range(n):
         if is_wall(kind[i]):
             continue
-        p[i] = c0 * c0 * (rho[i] - rho0)
+        p[i] = linear_pressure(rho[i], rho0, c0)
         for k in range(6):
             stress[i, k] = shear[i, k]
         for a in range(3):
@@ -78,9 +79,6 @@ class RiemannElastic(SolidScheme):
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
         self.corrected_shear_force = self.SHEAR_FORCES[self.option_choice("shear_force", self.SHEAR_FORCES)]
-
-    def initial_density(self, pressure):
-        return self.material.rho0 + pressure / self.material.c0**2
 
     def state(self, ctx):
         pa, m = ctx.particles, self.material

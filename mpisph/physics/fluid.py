@@ -72,12 +72,18 @@ def limited_pairs_sign(scheme):
     return LIMITED_PAIRS[scheme.option_choice("limiter", LIMITED_PAIRS)]
 
 
+@njit(inline="always")
+def linear_pressure(rho, rho0, c0):
+    """p = c0^2 (rho - rho0) (000_ Eqs. 3, 5; materials.LinearEquationOfState)."""
+    return c0 * c0 * (rho - rho0)
+
+
 @njit(cache=True)
 def equation_of_state(n, kind, rho, p, rho0, c0):
     """p = c0^2 (rho - rho0) for the moving particles in [0, n) (000_ Eq. 3)."""
     for i in range(n):
         if kind[i] == MOVING:
-            p[i] = c0 * c0 * (rho[i] - rho0)
+            p[i] = linear_pressure(rho[i], rho0, c0)
 
 
 @njit(cache=True)
@@ -258,9 +264,6 @@ class RiemannFluid(Scheme):
         super().__init__(case, kernel)
         self.damped = limited_pairs_sign(self)
         self.gravity = case.gravity
-
-    def initial_density(self, pressure):
-        return self.material.rho0 + pressure / self.material.c0**2
 
     @property
     def kinematic_viscosity(self):

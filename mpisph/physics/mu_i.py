@@ -470,9 +470,6 @@ class MuIScheme(Scheme):
         self._no_B = np.zeros((0, 1))
         self._no_law_pressure = np.zeros(0)
 
-    def initial_density(self, pressure):
-        return self.material.density_at_rest(pressure)
-
     def forces(self):
         return (GranularMomentum(self),)
 
