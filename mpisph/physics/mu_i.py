@@ -164,7 +164,7 @@ from ..tensors import adjugate, component
 from ..well_posedness import well_posed_window
 from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
-from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, inertial_number, pair_viscosity,
+from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, grain_size, inertial_number, pair_viscosity,
                        regularised_viscosity)
 from .kernel_mean import kernel_mean, rate_modulus
 from .viscous_stress import stress_divergence, strain_rate, viscous_force_tensor
@@ -193,7 +193,7 @@ def granular_state(n, kind, rho, gamma_dot, B, carried, rho_s, p, eta, dim, m, l
             law_p[i] = s * p[i]
             continue
         I = inertial_number(rho[i], rho_s[i], m)
-        eta[i] = regularised_viscosity(s * p[i], gamma_dot[i], I, rho_s[i], m.d0 * x ** (-1.0 / dim), m)
+        eta[i] = regularised_viscosity(s * p[i], gamma_dot[i], I, rho_s[i], grain_size(x, dim, m), m)
 
 
 @njit(cache=True)
@@ -204,7 +204,7 @@ def law_viscosity(n, kind, rho_s, gamma_dot, law_p, eta, dim, m):
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        d = m.d0 * (rho_s[i] / m.rho_s0) ** (-1.0 / dim)
+        d = grain_size(rho_s[i] / m.rho_s0, dim, m)
         I = gamma_dot[i] * d * math.sqrt(rho_s[i] / law_p[i]) if law_p[i] > 0.0 else 0.0
         eta[i] = regularised_viscosity(law_p[i], gamma_dot[i], I, rho_s[i], d, m)
 

@@ -124,6 +124,12 @@ def grain_density_ratio(rho, gamma_dot, guess, dim, m):
 
 
 @njit(cache=True)
+def grain_size(x, dim, m):
+    """d = d0 x^(-1/D) of grains compressed to x = rho_s / rho_s0 (004_ Eq. 43 in 2D; module docstring)."""
+    return m.d0 * x ** (-1.0 / dim)
+
+
+@njit(cache=True)
 def residual_viscosity(p, I, rho_s, d, m):
     """eta_0 = (mu(I) - mu(0)) p / gamma_dot of the module docstring [Pa s] (004_ Eq. 47)."""
     a = m.I_s + m.I_0
