@@ -67,6 +67,10 @@ RUNS = {
                                               "stabiliser=artificial_stress", "--t-end", "0.1"]),
     "inclined_plane": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
                                           "--t-end", "0.01"]),
+    # the law's kernel means of the deviatoric strain rate and of the carried pressure (law_viscosity)
+    "inclined_plane law_means": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
+                                                    "pressure_form=isotropic", "law_pressure=carried_mean",
+                                                    "law_strain_rate=deviatoric_kernel_mean", "--t-end", "0.01"]),
     "lube_collapse_2d": ("lube_collapse_2d", ["--set", "dp=0.005", "--t-end", "0.06"]),  # the implicit viscous kick
     "lube_collapse_2d deviatoric": ("lube_collapse_2d", ["--set", "dp=0.005", "viscous_form=corrected_stress",
                                                          "viscous_stress=deviatoric", "m_0=40", "--t-end", "0.06"]),

@@ -504,7 +504,8 @@ class MuIScheme(Scheme):
             mean_p = ctx.workspace.get("law_mean_pressure", n, (1,))
             kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, law_p.reshape(-1, 1),
                         ctx.kernel.params, mean_p)
-            law_p[:n] = mean_p[:, 0]
+            moving = pa.kind[:n] == MOVING  # kernel_mean leaves the other rows of mean_p unset
+            law_p[:n][moving] = mean_p[moving, 0]
             law_viscosity(n, pa.kind, pa.rho_s, pa.gamma_dot, law_p, pa.eta, self.dim, self.params)
         if self.corrected:
             viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, self.deviatoric_stress, pa.T_visc)
