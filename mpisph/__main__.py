@@ -57,10 +57,16 @@ def cmd_list():
 
 
 def cmd_info(name):
+    """The case's description, parts, parameters (default, unit, meaning) and the arrays its frames
+    hold (with the default parameters)."""
+    import numpy as np
+
     from .case import all_params, build_case, describe, load_case_module, resolve_params
+    from .parts import make_parts
     module = load_case_module(name)
     print(f"{name}: {describe(module)}")
-    case = build_case(module, resolve_params(module, {}))
+    values = resolve_params(module, {})
+    case = build_case(module, values)
     forces = ", ".join(type(f).__name__ for f in case.forces)
     print(f"scheme {case.scheme}, integrator {case.integrator}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
@@ -70,6 +76,13 @@ def cmd_info(name):
     for key, p in params.items():
         extra = f" (one of {', '.join(p.choices)})" if p.choices else ""
         print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
+    print()
+    print("frames hold for each particle (ParaView's point arrays; x gives the points):")
+    fields = make_parts(case, values).frame_fields
+    width = max(len(f.name) for f in fields)
+    for f in fields:
+        shape = " x ".join(map(str, f.shape_in(case.dim)))
+        print(f"  {f.name:<{width}}  {np.dtype(f.dtype).name:<7} {shape:<5} {f.doc}")
 
 
 def cmd_report(paths):

@@ -49,6 +49,10 @@ class Field:
     dtype: type
     doc: str
 
+    def shape_in(self, dim):
+        """The shape per particle in ``dim`` dimensions: "dim" and "sym" (tensors.size) resolved."""
+        return tuple(dim if s == "dim" else tensors.size(dim) if s == "sym" else s for s in self.shape)
+
 
 # Fields every particle has, whatever its material.
 CORE_FIELDS = (
@@ -59,7 +63,7 @@ CORE_FIELDS = (
     Field("mass", (), np.float64, "mass [kg]"),
     Field("rho", (), np.float64, "density [kg/m^d]"),
     Field("p", (), np.float64, "pressure [Pa]"),
-    Field("normal", ("dim",), np.float64, "wall normal into the material (walls only)"),
+    Field("normal", ("dim",), np.float64, "unit wall normal into the material (walls only) [-]"),
 )
 
 
@@ -75,11 +79,11 @@ class Particles:
         self.arrays = arrays
         self.n_owned = n_owned
         self._buffers = dict(arrays)
-        self._columns = {f.name: int(np.prod(_shape(f, dim), dtype=np.int64)) for f in self.fields}
+        self._columns = {f.name: int(np.prod(f.shape_in(dim), dtype=np.int64)) for f in self.fields}
 
     @classmethod
     def empty(cls, dim, fields, n=0):
-        arrays = {f.name: np.zeros((n,) + _shape(f, dim), dtype=f.dtype) for f in fields}
+        arrays = {f.name: np.zeros((n,) + f.shape_in(dim), dtype=f.dtype) for f in fields}
         return cls(dim, fields, arrays, n)
 
     def __getattr__(self, name):
@@ -151,7 +155,3 @@ class Particles:
     def owned_fields(self):
         """Dict of every field over the owned particles (for frames)."""
         return {f.name: self.arrays[f.name][: self.n_owned] for f in self.fields}
-
-
-def _shape(field, dim):
-    return tuple(dim if s == "dim" else tensors.size(dim) if s == "sym" else s for s in field.shape)

@@ -50,6 +50,11 @@ class Parts:
             fields += surface.FIELDS
         return tuple({f.name: f for f in fields}.values())
 
+    @property
+    def frame_fields(self):
+        """The fields a frame holds: ``fields``, then the scheme's output-only ``derived``."""
+        return self.fields + self.scheme.derived
+
 
 def make_parts(case, params):
     """The Parts of ``case`` with the run parameters ``params``; InputError for an unknown name."""

@@ -35,6 +35,7 @@ class Scheme:
     name = ""
     materials = ()  # the material classes (materials.py) this scheme discretises
     fields = ()  # per-particle fields it owns (particles.Field)
+    derived = ()  # the output-only fields of ``derived_fields`` (particles.Field)
     state_fields = ()  # fields the momentum sum reads from neighbours
     carried_fields = ("v", "rho")  # what a particle carries: corrected to its new place when shifted
     needs_surface = False  # free-surface classes every configuration (surface.py)
@@ -121,5 +122,6 @@ class Scheme:
         return ()
 
     def derived_fields(self, pa, n):
-        """Output-only fields of the owned particles for frames."""
+        """Output-only fields of the owned particles for frames, {name: array}, one for each Field
+        of ``derived``."""
         return {}

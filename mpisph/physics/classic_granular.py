@@ -57,7 +57,8 @@ from .drucker_prager import (NO_DIFFUSION, PLASTIC_STRAIN, plastic_stress_rate, 
                              strain_of_multiplier, strain_of_return)
 from .fluid import reinitialise_density
 from .mu_i import continuity
-from .solid import STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times, velocity_gradient
+from .solid import (SOLID_OUTPUT_FIELDS, STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times,
+                    velocity_gradient)
 from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
 
 MU_EPSILON = 0.01  # the 0.01 h^2 of Eq. 25's mu_ij
@@ -178,6 +179,7 @@ class ClassicGranular(Scheme):
     carried_fields = ("v", "rho", "stress")
     integrated_fields = {"stress": "stress_rate", "plastic_strain": "plastic_rate"}
     source = "002_"
+    derived = SOLID_OUTPUT_FIELDS
     fields = (
         STRESS,
         STRESS_RATE,

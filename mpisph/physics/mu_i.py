@@ -409,6 +409,8 @@ class MuIScheme(Scheme):
     name = "mu_i"
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
+    derived = (Field("inertial_number", (), np.float64, "inertial number I from the volume fraction (004_ Eq. 8) [-]"),
+               Field("friction", (), np.float64, "friction coefficient mu(I) (004_ Eq. 7) [-]"))
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
                "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric",
                "law_pressure": "state", "law_strain_rate": "own"}
@@ -447,7 +449,7 @@ class MuIScheme(Scheme):
         self.state_fields = ("p", "eta") + (("gamma_dot",) if self.mean == MEAN_SECANT else ())
         if self.corrected:
             self.fields += (
-                Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
+                Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed [-]"),
                 Field("T_visc", ("dim", "dim"), np.float64, "viscous stress times B, 2 eta eps B [Pa]"))
             # the explicit divergence needs the neighbours' T, the implicit kick's preconditioner their eta
             self.state_fields = ("p", "eta") if self.implicit else ("p", "T_visc")

@@ -265,9 +265,17 @@ def strain_energy(pa, n, deviator, material):
     return float(np.sum((vol * density)[~np.isin(pa.kind[:n], (WALL, WALL_SLIP))]))
 
 
+SOLID_OUTPUT_FIELDS = (
+    Field("von_mises", (), np.float64, "von Mises stress sqrt(3/2 s:s) [Pa]"),
+    Field("vertical_stress", (), np.float64, "normal stress along the vertical axis (y in 2D, z in 3D), tension "
+          "positive [Pa]"),
+    Field("speed", (), np.float64, "speed |v| [m/s]"),
+)
+
+
 def solid_output_fields(pa, n):
     """Output-only fields of the owned particles of a scheme with a stress: von Mises, vertical
-    stress, speed."""
+    stress, speed (``SOLID_OUTPUT_FIELDS``)."""
     von_mises = np.empty(n)
     speed = np.empty(n)
     output_invariants(n, pa.stress, pa.v, von_mises, speed)
@@ -310,6 +318,7 @@ class SolidScheme(Scheme):
     """
 
     needs_surface = True
+    derived = SOLID_OUTPUT_FIELDS
     advances_in_rates = True  # update_stress
     acoustic_cfl = 0.4  # 000_ Eq. 38: c0 of Eq. 6 is below the P-wave speed of a solid
     state_fields = ("rho", "p", "stress")
@@ -320,7 +329,7 @@ class SolidScheme(Scheme):
 
     base_fields = (
         STRESS,
-        Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed"),
+        Field("B", ("sym",), np.float64, "kernel-gradient correction matrix (000_ Eq. 24), packed [-]"),
     )
 
     def __init__(self, case, kernel):
