@@ -16,6 +16,17 @@ def surge_front(frame, dp):
     return frame["x"][:, 0].max() + 0.5 * dp
 
 
+def dam_break_fronts(frames):
+    """(T, Z) of a dam break's frames (cases/dam_break_2d.py, read with their walls or without) as
+    Koshizuka & Oka and Martin & Moyce plot them: T = t sqrt(2 g / L) and Z = z / L, z the surge
+    front of the fluid (``surge_front``) and L the column's width, from the frames' parameters."""
+    p = frames[0]["params"]
+    L, g, dp = float(p["L"]), float(p["g"]), float(p["dp"])
+    T = np.array([f["t"] for f in frames]) * np.sqrt(2 * g / L)
+    Z = np.array([surge_front({"x": f["x"][f["kind"] == MOVING]}, dp) / L for f in frames])
+    return T, Z
+
+
 def front_speed(T, z, lo, hi):
     """Least-squares slope dz/dT of a front over lo <= T <= hi."""
     T, z = np.asarray(T), np.asarray(z)

@@ -81,6 +81,11 @@ MARTIN_MOYCE_T = np.array([1.219, 1.997, 2.547, 3.345])
 MARTIN_MOYCE_Z = np.array([1.474, 2.292, 2.995, 4.134])
 
 
+def koshizuka_oka_front(T):
+    """Koshizuka & Oka's surge front z/L at T, their points joined by straight lines."""
+    return np.interp(T, KOSHIZUKA_T, KOSHIZUKA_Z)
+
+
 def martin_moyce_speed(lo=1.9, hi=3.1):
     """dZ/dT of Martin & Moyce's front between T = lo and hi, the points joined by straight lines."""
     return (np.interp(hi, MARTIN_MOYCE_T, MARTIN_MOYCE_Z) - np.interp(lo, MARTIN_MOYCE_T, MARTIN_MOYCE_Z)) / (hi - lo)

@@ -56,6 +56,17 @@ def test_max_speed_counts_moving_particles_only_and_rest_is_the_last_over_the_la
     assert measure.final_over_peak_speed(frames) == pytest.approx(0.1, rel=1e-15)
 
 
+def test_dam_break_fronts_scale_by_the_column_width_and_skip_the_walls():
+    """A column of width L = 2 m (dp = 0.1) whose fluid reaches x = 1 m beside a wall at x = 3 m:
+    Z = (1 + dp/2) / L, and T = t sqrt(2 g / L)."""
+    x = np.array([[0.5, 0.1], [1.0, 0.1], [3.0, 0.1]])
+    kind = np.array([MOVING, MOVING, WALL])
+    frames = [{"t": t, "x": x, "kind": kind, "params": {"L": 2.0, "g": 9.81, "dp": 0.1}} for t in (0.0, 0.5)]
+    T, Z = measure.dam_break_fronts(frames)
+    np.testing.assert_allclose(T, [0.0, 0.5 * np.sqrt(9.81)], rtol=1e-15)
+    np.testing.assert_allclose(Z, [0.525, 0.525], rtol=1e-15)
+
+
 def test_time_offset_recovers_a_known_shift():
     """A front z(T) = T^2 and reference points taken from it 0.25 later in T: the offset that aligns
     them is -0.25, to the search step."""

@@ -210,8 +210,7 @@ def dam_break(ranks):
     """Koshizuka & Oka's front for T <= 1.6 and Martin & Moyce's late front speed (issue 13's
     settlement of the reference), the offset in T that best aligns the front with Martin & Moyce."""
     frames, _, cmd = run("dam_break_2d", "dam_break_2d", ["--t-end", "0.72", "--output-interval", "0.02"], ranks)
-    T = np.array([f["t"] for f in frames]) * np.sqrt(2 * 9.81)
-    z = np.array([measure.surge_front(f, 0.02) for f in frames])
+    T, z = measure.dam_break_fronts(frames)
     offset = measure.time_offset(T, z, references.MARTIN_MOYCE_T, references.MARTIN_MOYCE_Z)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
     ax[0].plot(references.KOSHIZUKA_T, references.KOSHIZUKA_Z, "ks", label="Koshizuka & Oka 1996")
@@ -229,7 +228,7 @@ def dam_break(ranks):
         if Tk > T[-1]:
             break
         zk = np.interp(Tk, T, z)
-        ref = np.interp(Tk, references.KOSHIZUKA_T, references.KOSHIZUKA_Z)
+        ref = references.koshizuka_oka_front(Tk)
         error = zk / ref - 1
         rows.append((f"front at T = {Tk:.3f}", f"{zk:.3f}", f"{ref:.3f} (K&O)", f"{100 * error:+.1f}%",
                      *(("10%", bool(abs(error) <= 0.10)) if Tk <= 1.6 else ("-",))))
