@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 SCRIPTS = Path(__file__).resolve().parent.parent / "scripts"
+BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"]  # an oscillating_beam run of seconds
 
 
 def load_script(name):
@@ -26,6 +27,13 @@ def load_package(name):
     module = importlib.import_module(name)
     assert Path(module.__file__).is_relative_to(SCRIPTS / name.split(".")[0]), f"{name} from {module.__file__}"
     return module
+
+
+def fix_code_version(monkeypatch):
+    """Give the scripts' runs (scripts/validation/runs.py) a fixed code version, so that they are stamped
+    even while mpisph/ or cases/ hold uncommitted changes (code_version's own test is in
+    test_validate_reuse.py)."""
+    monkeypatch.setattr(load_package("validation.runs"), "code_version", lambda: ["tree-of-mpisph", "tree-of-cases"])
 
 
 def _scripts_on_the_path():

@@ -4,9 +4,7 @@ any run.log in runs/production/ was read, whatever code had written it."""
 
 import pytest
 
-from repo_script import load_package, load_script
-
-BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"]
+from repo_script import BEAM, fix_code_version, load_package, load_script
 
 
 @pytest.fixture
@@ -14,7 +12,7 @@ def production(tmp_path, monkeypatch):
     """production.py writing its runs under ``tmp_path``, with a fixed code version."""
     production = load_script("production")
     monkeypatch.setattr(production, "RUNS", tmp_path)
-    monkeypatch.setattr(load_package("validation.runs"), "code_version", lambda: ["tree-of-mpisph", "tree-of-cases"])
+    fix_code_version(monkeypatch)
     return production
 
 

@@ -7,10 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from repo_script import load_package
+from repo_script import BEAM, fix_code_version, load_package
 
 ROOT = Path(__file__).resolve().parent.parent
-BEAM = ["--set", "H_over_dp=5", "--t-end", "0.002", "--output-interval", "0.001"]
 
 
 @pytest.fixture
@@ -24,9 +23,8 @@ def runs(tmp_path, monkeypatch):
 
 @pytest.fixture
 def stamped(runs, monkeypatch):
-    """``runs`` with a fixed code version, so that its runs are stamped even while mpisph/ or cases/
-    hold uncommitted changes (code_version's own test is above)."""
-    monkeypatch.setattr(runs, "code_version", lambda: ["tree-of-mpisph", "tree-of-cases"])
+    """``runs`` with a fixed code version (repo_script.fix_code_version)."""
+    fix_code_version(monkeypatch)
     return runs
 
 
