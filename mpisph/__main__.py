@@ -77,12 +77,12 @@ def cmd_info(name):
         extra = f" (one of {', '.join(p.choices)})" if p.choices else ""
         print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
     print()
-    print("frames hold for each particle (ParaView's point arrays; x gives the points):")
+    print("frames hold for each particle, with these parameters (ParaView's point arrays; x gives the points):")
     fields = make_parts(case, values).frame_fields
     width = max(len(f.name) for f in fields)
     for f in fields:
-        shape = " x ".join(map(str, f.shape_in(case.dim)))
-        print(f"  {f.name:<{width}}  {np.dtype(f.dtype).name:<7} {shape:<5} {f.doc}")
+        shape = "x".join(map(str, f.shape_in(case.dim))) or "scalar"
+        print(f"  {f.name:<{width}}  {np.dtype(f.dtype).name:<7} {shape:<6} {f.doc}")
 
 
 def cmd_report(paths):

@@ -55,7 +55,7 @@ KernelParams = namedtuple("KernelParams", ("kind", "h", "sigma"))
 AdaptiveKernelParams = namedtuple("AdaptiveKernelParams", ("kind", "h", "sigma", "dim", "knot", "coefficients"))
 KNOT = Field("knot", (), np.float64, "knot a of the adaptive cubic B-spline (002_ Eq. 31; 1: the cubic spline) [-]")
 KNOT_COEFFICIENTS = Field("knot_coefficients", (2,), np.float64,
-                          "factors of the two pieces of the adaptive B-spline (kernels.knot_coefficients)")
+                          "factors of the two pieces of the adaptive B-spline (kernels.knot_coefficients) [1/m^d]")
 
 
 class Kernel:

@@ -67,7 +67,8 @@ RUNS = {
                                               "stabiliser=artificial_stress", "--t-end", "0.1"]),
     "inclined_plane": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
                                           "--t-end", "0.01"]),
-    # the law's kernel means of the deviatoric strain rate and of the carried pressure (law_viscosity)
+    # the law's kernel means of the deviatoric strain rate and of the carried pressure (law_viscosity);
+    # against a base before e5600f5 its law_pressure differs on the walls, which held unset memory there
     "inclined_plane law_means": ("inclined_plane", ["--set", "H=0.02", "dp=0.002", "columns=16", "m_0=0.2",
                                                     "pressure_form=isotropic", "law_pressure=carried_mean",
                                                     "law_strain_rate=deviatoric_kernel_mean", "--t-end", "0.01"]),
