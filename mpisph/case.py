@@ -116,7 +116,7 @@ def fluid_stabiliser_params(default, also=None):
             **SHIFTING_PARAMS, **ARTIFICIAL_STRESS_PARAMS, **UTVF_PARAMS}
 
 
-DENSITY_REINITS = ("none", "inner", "free_surface")  # Case.density_reinit (physics/fluid.reinitialise_density)
+DENSITY_REINITS = ("none", "inner", "free_surface")  # Case.density_reinit (physics/density_reinit.py)
 
 
 def density_reinit_param(default, choices=DENSITY_REINITS, why=""):
@@ -124,7 +124,7 @@ def density_reinit_param(default, choices=DENSITY_REINITS, why=""):
     default, the modes it offers and, in ``why``, the case's reason for its default."""
     return Param(default, "-", "density by kernel summation (001_ Eq. 8) every configuration: inner, on every "
                  "particle; free_surface, not below the evolved density's share near a free surface "
-                 "(physics/fluid.density_summation); none, continuity alone" + (f"; {why}" if why else ""),
+                 "(physics/density_reinit.py); none, continuity alone" + (f"; {why}" if why else ""),
                  choices=choices)
 
 

@@ -54,7 +54,7 @@ class Scheme:
             takes = ", ".join(self.options) or "none"
             raise InputError(f"scheme {self.name} has no option {unknown[0]!r} (it takes: {takes})")
         self._options = {**self.options, **case.scheme_options}
-        self.density_reinit = case.density_reinit  # physics/fluid.reinitialise_density
+        self.density_reinit = case.density_reinit  # physics/density_reinit.py
         self.lattice_sum = kernel.lattice_sum(case.dp) if case.density_reinit != "none" else None
 
     def option(self, name):

@@ -55,11 +55,10 @@ from ..scheme import Scheme
 from ..tensors import SYM3, unpack_row
 from .drucker_prager import (NO_DIFFUSION, PLASTIC_STRAIN, plastic_stress_rate, return_mapping,
                              strain_of_multiplier, strain_of_return)
-from .fluid import reinitialise_density
 from .mu_i import continuity
 from .solid import (SOLID_OUTPUT_FIELDS, STRESS, material_pressure, solid_output_fields, strain_energy, tensor_times,
                     velocity_gradient)
-from .walls import WALL_DISTANCE, morris_relative_velocity, require_wall_distances
+from .walls import WALL_DISTANCE, MorrisWalls, morris_relative_velocity, require_wall_distances
 
 MU_EPSILON = 0.01  # the 0.01 h^2 of Eq. 25's mu_ij
 UNBOUNDED_STRENGTH = (0.0, 0.0, math.inf)  # (alpha_phi, alpha_psi, k_c) of an elastic solid: Eq. 28 never yields
@@ -166,7 +165,7 @@ class ClassicStress(ForceTerm):
                                     s.h, ctx.kernel.params, acc)
 
 
-class ClassicGranular(Scheme):
+class ClassicGranular(MorrisWalls, Scheme):
     """Drucker-Prager soil in the classic SPH of 002_ (module docstring). Options
     (``Case.scheme_options``): ``alpha`` and ``beta`` of Eq. 25 (002_ Tables 2 and 4: 1 and 1
     for the soil cylinder, 1 and 0 for the vertical cut) and ``chi_max`` of Eq. 34 (1.5; 002_
@@ -208,11 +207,6 @@ class ClassicGranular(Scheme):
 
     def forces(self):
         return (ClassicStress(self),)
-
-    def configure(self, ctx):
-        ctx.refresh(["wall_distance"])
-        if reinitialise_density(ctx, self):
-            ctx.refresh(["rho"])
 
     def state(self, ctx):
         pa = ctx.particles

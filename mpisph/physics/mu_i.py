@@ -162,13 +162,12 @@ from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import adjugate, component
 from ..well_posedness import well_posed_window
-from .fluid import reinitialise_density
 from .implicit_viscosity import ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, grain_size, inertial_number, pair_viscosity,
                        regularised_viscosity)
 from .kernel_mean import kernel_mean, rate_modulus
 from .viscous_stress import stress_divergence, strain_rate, viscous_force_tensor
-from .walls import WALL_DISTANCE, along_wall_normal, morris_relative_velocity, require_wall_distances
+from .walls import WALL_DISTANCE, MorrisWalls, along_wall_normal, morris_relative_velocity, require_wall_distances
 
 VISCOUS_CFL = 0.5 * 0.1  # 004_ Eq. 39: CFL 0.5 times the 0.1 of the viscous limit
 
@@ -382,7 +381,7 @@ LAW_PRESSURES = ("state", "carried", "carried_mean")
 LAW_STRAIN_RATES = ("own", "kernel_mean", "deviatoric_kernel_mean")
 
 
-class MuIScheme(Scheme):
+class MuIScheme(MorrisWalls, Scheme):
     """mu(I) granular fluid with weakly compressible grains (004_ Secs. 3-4).
 
     At the start of a run the state of the initial particles; per configuration:
@@ -474,11 +473,6 @@ class MuIScheme(Scheme):
 
     def forces(self):
         return (GranularMomentum(self),)
-
-    def configure(self, ctx):
-        ctx.refresh(["wall_distance"])
-        if reinitialise_density(ctx, self):
-            ctx.refresh(["rho"])
 
     def start(self, ctx):
         self.state(ctx)

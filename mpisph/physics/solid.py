@@ -86,7 +86,8 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import component, full_times_vector
-from .fluid import continuity, reinitialise_density
+from .density_reinit import reinitialise_density
+from .fluid import continuity
 from .velocity_gradient import gradient_sum
 from .walls import along_wall_normal, wall_relative_velocity
 

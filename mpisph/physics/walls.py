@@ -12,6 +12,8 @@ stresses of the partner are chosen by each scheme (fluid: hydrostatic
 pressure extrapolation; solids, the classic schemes and mu(I): the wall takes the state of
 particle i).
 
+``MorrisWalls`` is the ``configure`` step of the schemes with Morris's walls.
+
 ``wall_relative_velocity`` (mirror, beta = 2) and ``morris_relative_velocity`` both
 give a wall partner's velocity through ``scaled_wall_velocity``. Pair loops
 compute the plain difference v_i - v_j and call it only when j is a wall
@@ -27,8 +29,19 @@ from numba import njit
 
 from ..errors import InputError
 from ..particles import WALL, Field
+from .density_reinit import reinitialise_density
 
 WALL_DISTANCE = Field("wall_distance", (), np.float64, "distance behind the wall surface (walls only) [m]")
+
+
+class MorrisWalls:
+    """The ``configure`` of a scheme with Morris's walls (mu(I), the classic schemes): the wall
+    distances to the ghosts, then the density by kernel summation where the case asks for it."""
+
+    def configure(self, ctx):
+        ctx.refresh(["wall_distance"])
+        if reinitialise_density(ctx, self):
+            ctx.refresh(["rho"])
 
 
 def require_wall_distances(case, scheme):
