@@ -198,6 +198,48 @@ def test_frames_hold_the_declared_fields(runs, case):
         assert stored[f.name].dtype == np.dtype(f.dtype), f.name
 
 
+@pytest.mark.parametrize("case", list(CASES))
+def test_frames_hold_plausible_values(runs, case):
+    """Every array of every particle of the run's last frame, walls included, is finite, and what a
+    frame derives from the state agrees with that state: the bitwise test cannot see a value that
+    is wrong the same way on every rank count. Speed |v|, the vertical stress (y in 2D, z in 3D) and
+    the von Mises stress sqrt(3/2 s:s) of the packed stress; for mu(I) the inertial number from the
+    volume fraction (004_ Eq. 8) and a friction between mu_s and mu_2 (Eq. 7); positive masses and
+    moving densities, a plastic strain that only accumulates, unit normals on the walls, and the
+    documented codes of kind and surface."""
+    f = read_frame(list_frames(runs(case)[1])[-1], walls=True)
+    moving, dim = f["kind"] == 0, f["dim"]
+    for name, a in stored_arrays(f).items():
+        assert np.isfinite(a).all(), name
+    assert set(np.unique(f["kind"])) <= {0, 1, 2, 3}
+    assert (f["mass"] > 0).all() and (f["rho"][moving] > 0).all()
+    walls = np.isin(f["kind"], (1, 2))  # no-slip and free-slip walls carry a normal; clamped rows do not
+    if "normal" in f and walls.any():
+        np.testing.assert_allclose(np.linalg.norm(f["normal"][walls], axis=1), 1.0, rtol=1e-12)
+    if "surface" in f:
+        assert set(np.unique(f["surface"][moving])) <= {0, 1, 2, 3}
+    if "plastic_strain" in f:
+        assert (f["plastic_strain"] >= 0).all()
+    if "speed" in f:
+        np.testing.assert_allclose(f["speed"], np.linalg.norm(f["v"], axis=1), rtol=1e-14, atol=1e-300)
+    if "von_mises" in f:
+        s = f["stress"][moving]
+        deviator = s.copy()
+        deviator[:, :3] -= s[:, :3].mean(axis=1, keepdims=True)
+        s_s = (deviator[:, :3] ** 2).sum(axis=1) + 2.0 * (deviator[:, 3:] ** 2).sum(axis=1)
+        np.testing.assert_allclose(f["von_mises"][moving], np.sqrt(1.5 * s_s), rtol=1e-10,
+                                   atol=1e-12 * np.abs(s).max())
+        np.testing.assert_array_equal(f["vertical_stress"], f["stress"][:, dim - 1])
+    if "friction" in f:
+        p = f["params"]
+        rho, rho_s = f["rho"][moving], f["rho_s"][moving]
+        I = np.maximum(0.0, (p["phi_max"] - rho / rho_s) / (p["phi_max"] - p["phi_min"]))
+        np.testing.assert_allclose(f["inertial_number"][moving], I, rtol=1e-12, atol=1e-15)
+        mu_s, mu_2 = np.tan(np.radians([p["mu_s_deg"], p["mu_2_deg"]]))
+        mu = f["friction"][moving]
+        assert (mu >= mu_s * (1 - 1e-12)).all() and (mu <= mu_2).all()
+
+
 @pytest.mark.parametrize("case", ["dam_break_2d", "column_collapse_2d", "cube_failure_3d", "inclined_plane"])
 def test_info_lists_the_arrays_of_a_frame(runs, case, capsys):
     """`python -m mpisph info CASE` lists every array of a frame of the case (these runs set only
