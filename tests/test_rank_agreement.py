@@ -7,11 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mpisph import surface
 from mpisph.__main__ import cmd_info
 from mpisph.case import build_case, load_case_module
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import frame_path, list_frames, read_frame
 from mpisph.launch import mpirun_python
+from mpisph.particles import CLAMPED, MOVING, WALL, WALL_SLIP
 from mpisph.parts import make_parts
 from mpirun import mpisph
 
@@ -208,16 +210,17 @@ def test_frames_hold_plausible_values(runs, case):
     moving densities, a plastic strain that only accumulates, unit normals on the walls, and the
     documented codes of kind and surface."""
     f = read_frame(list_frames(runs(case)[1])[-1], walls=True)
-    moving, dim = f["kind"] == 0, f["dim"]
+    moving, dim = f["kind"] == MOVING, f["dim"]
     for name, a in stored_arrays(f).items():
         assert np.isfinite(a).all(), name
-    assert set(np.unique(f["kind"])) <= {0, 1, 2, 3}
+    assert set(np.unique(f["kind"])) <= {MOVING, WALL, WALL_SLIP, CLAMPED}
     assert (f["mass"] > 0).all() and (f["rho"][moving] > 0).all()
-    walls = np.isin(f["kind"], (1, 2))  # no-slip and free-slip walls carry a normal; clamped rows do not
+    walls = np.isin(f["kind"], (WALL, WALL_SLIP))  # walls carry a normal; clamped rows do not
     if "normal" in f and walls.any():
         np.testing.assert_allclose(np.linalg.norm(f["normal"][walls], axis=1), 1.0, rtol=1e-12)
     if "surface" in f:
-        assert set(np.unique(f["surface"][moving])) <= {0, 1, 2, 3}
+        assert set(np.unique(f["surface"][moving])) <= {surface.INNER, surface.NEAR_SURFACE, surface.SURFACE,
+                                                         surface.SPLASHED}
     if "plastic_strain" in f:
         assert (f["plastic_strain"] >= 0).all()
     if "speed" in f:
