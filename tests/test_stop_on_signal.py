@@ -2,7 +2,8 @@
 SIGTERM (sent to the ranks, as srun and scancel do) finishes its step, writes a frame, says how
 to restart and exits 0; the restart continues from that frame (parallel/stop.py) to the bits of a
 run never stopped. A run killed with SIGKILL while it writes a frame leaves only complete frames
-(io/frames.py writes ``.part`` files and renames them)."""
+(io/frames.py writes ``.part`` files and renames them). mpirun itself passes SIGUSR1 on at once and
+SIGTERM only after Open MPI's grace, which decides whether a long step can end (README.md)."""
 
 import os
 import re
@@ -113,3 +114,50 @@ def test_a_run_killed_while_writing_a_frame_leaves_only_complete_frames(tmp_path
     for frame in frames:
         check_frame(frame)
     assert all(not p.name.endswith(".part") for p in map(Path, frames))
+
+
+# a rank that ends its "step" 3 s after a stop signal, as a large run's step can: it only records the
+# signal in its handler and checks it between steps, as parallel/stop.py does
+_LONG_STEP = """
+import pathlib, signal, sys, time
+received = []
+for s in (signal.SIGTERM, signal.SIGUSR1):
+    signal.signal(s, lambda signum, frame: received.append(signum))
+out = pathlib.Path(sys.argv[1])
+(out / "started").touch()
+while not received:
+    time.sleep(0.05)
+time.sleep(3.0)
+(out / "finished").touch()
+"""
+
+
+@pytest.mark.parametrize("signum, grace, finishes", [(signal.SIGUSR1, None, True), (signal.SIGTERM, None, False),
+                                                     (signal.SIGTERM, "5", True)],
+                         ids=["SIGUSR1", "SIGTERM", "SIGTERM with a grace of 5 s"])
+def test_mpirun_lets_a_rank_end_a_long_step_after_sigusr1_and_after_sigterm_only_within_its_grace(
+        tmp_path, signum, grace, finishes):
+    """What README.md and jobs/README.md say of stopping a run through mpirun: it passes SIGUSR1 on
+    and waits for the rank; on SIGTERM Open MPI 4 sends the rank SIGTERM once
+    OMPI_MCA_odls_base_sigkill_timeout has passed (1 s unless set) and SIGKILL after as long again,
+    so a step of 3 s ends only with a longer grace."""
+    script = tmp_path / "long_step.py"
+    script.write_text(_LONG_STEP)
+    env = {k: v for k, v in dict(MPI_ENV, **os.environ).items() if k != "OMPI_MCA_odls_base_sigkill_timeout"}
+    if grace is not None:
+        env["OMPI_MCA_odls_base_sigkill_timeout"] = grace
+    proc = subprocess.Popen(["mpirun", "-n", "1", sys.executable, str(script), str(tmp_path)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not (tmp_path / "started").exists() and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    assert (tmp_path / "started").exists(), proc.communicate()
+    os.kill(proc.pid, signum)
+    try:
+        _, stderr = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("mpirun did not end after the signal")
+    assert (tmp_path / "finished").exists() == finishes, stderr
+    if signum == signal.SIGUSR1:
+        assert proc.returncode == 0, stderr
