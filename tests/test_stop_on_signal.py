@@ -125,7 +125,8 @@ for s in (signal.SIGTERM, signal.SIGUSR1):
     signal.signal(s, lambda signum, frame: received.append(signum))
 out = pathlib.Path(sys.argv[1])
 (out / "started").touch()
-while not received:
+give_up = time.monotonic() + 120  # never outlive the test
+while not received and time.monotonic() < give_up:
     time.sleep(0.05)
 time.sleep(3.0)
 (out / "finished").touch()
@@ -151,7 +152,9 @@ def test_mpirun_lets_a_rank_end_a_long_step_after_sigusr1_and_after_sigterm_only
     deadline = time.monotonic() + 60
     while not (tmp_path / "started").exists() and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.05)
-    assert (tmp_path / "started").exists(), proc.communicate()
+    if not (tmp_path / "started").exists():
+        proc.kill()
+        pytest.fail(f"the rank did not start: {proc.communicate()}")
     os.kill(proc.pid, signum)
     try:
         _, stderr = proc.communicate(timeout=60)
