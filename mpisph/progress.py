@@ -48,7 +48,7 @@ class Progress:
 
     def finish(self, sim, wall, step0, ended="done"):
         """Closing lines: how the run ``ended`` (done, stopped), where the time went (slowest rank
-        per phase), the throughput and the memory."""
+        per phase), the throughput, the scheme's own (Scheme.closing_report) and the memory."""
         phases = sim.timer.summary(self.comm)
         refresh = self.comm.allreduce(sim.halo.refresh_seconds, op=MPI.MAX)
         phases["exchange"] += refresh
@@ -60,6 +60,8 @@ class Progress:
         self._say(f"timing: wall {wall:.2f} s  {shares}")
         self._say(f"throughput: {rate:.4g} particle-steps/s/core on {self.comm.size} rank(s), "
                   f"{self.n_total} particles, {steps} steps, {sim.advection_steps} neighbour configurations")
+        for line in sim.parts.scheme.closing_report():
+            self._say(line)
         self._say(per_rank_line(self.comm, self.baseline, self.start_bytes, sim.particles.n_owned))
 
     def _say(self, line):

@@ -121,6 +121,10 @@ class Scheme:
         """Lines for the start of a run: derived constants a user should see."""
         return ()
 
+    def closing_report(self):
+        """Lines for the end of a run, after its throughput: what a user should know of its cost."""
+        return ()
+
     def derived_fields(self, pa, n):
         """Output-only fields of the owned particles for frames, {name: array}, one for each Field
         of ``derived``."""

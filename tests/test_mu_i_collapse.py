@@ -7,6 +7,7 @@ The runouts against Lube's laws are scripts/validate.py's (docs/VALIDATION.md): 
 issue 14."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -236,6 +237,27 @@ def test_implicit_kick_that_does_not_converge_stops_the_run_with_one_line(tmp_pa
     assert err.startswith("mpisph: blow-up at step 0") and "did not converge in 1 conjugate-gradient" in err
     assert len(err.splitlines()) == 1
     assert len(list_frames(tmp_path)) == 2  # the initial frame and the one at the failure
+
+
+@pytest.mark.parametrize("step", ["implicit", "explicit"])
+def test_the_closing_lines_say_how_many_iterations_the_implicit_kick_took(tmp_path, capsys, step):
+    """A run with the implicit kick ends with a line of its conjugate-gradient iterations, one kick a
+    step (the throughput line's count); the explicit step has no such line."""
+    from mpisph.__main__ import main
+
+    code = main(["lube_collapse_2d", "--set", "dp=0.00972", f"viscous_step={step}", "--t-end", "0.01",
+                 "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert code == 0
+    steps = int(re.search(r"^throughput: .*, (\d+) steps,", out, re.M).group(1))
+    m = re.search(r"^mu\(I\): the implicit viscous kick took ([\d.]+) conjugate-gradient iterations a step on "
+                  r"average, (\d+) at most \((\d+) steps\)$", out, re.M)
+    if step == "explicit":
+        assert m is None and "conjugate-gradient" not in out
+        return
+    assert m, out
+    assert int(m.group(3)) == steps > 0
+    assert 1 <= float(m.group(1)) <= int(m.group(2)) < 2000
 
 
 @pytest.mark.parametrize("case, dp, warned", [

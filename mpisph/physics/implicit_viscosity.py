@@ -44,7 +44,8 @@ operator alone. Its dot products are partition-independent sums
 stay bit for bit the same on any number of ranks. The iteration stops when the
 preconditioned residual, as an RMS velocity sqrt(r.z / sum m), is below
 ``TOLERANCE`` times the case's reference speed, or ``RELATIVE_TOLERANCE`` times
-its initial value.
+its initial value. The run's closing lines give the iterations a kick, the mean
+and the most (``summary``).
 """
 
 import math
@@ -310,8 +311,15 @@ class ImplicitViscosity:
         self.operator = CorrectedStress(scheme) if scheme.corrected else PairTerm(scheme)
         self.u_ref = u_ref
         self.total_mass = None
-        self.iterations = 0
+        self.iterations = 0  # the last kick's
+        self.kicks = self.total_iterations = self.most_iterations = 0  # since the run's (re)start
         self.history = True  # the fields hold a last kick (a restart's frame); MuIScheme.start clears it
+
+    def summary(self):
+        """A closing line of the run: the kicks' conjugate-gradient iterations, the same on every rank."""
+        mean = self.total_iterations / self.kicks if self.kicks else 0.0
+        return (f"mu(I): the implicit viscous kick took {mean:.1f} conjugate-gradient iterations a step on "
+                f"average, {self.most_iterations} at most ({self.kicks} steps)")
 
     def kick(self, ctx, dt):
         """Replace the explicitly kicked velocities b of the owned moving particles (``v``, sent to
@@ -339,6 +347,9 @@ class ImplicitViscosity:
         for iteration in range(MAX_ITERATIONS + 1):
             if rz <= floor:
                 self.iterations = iteration
+                self.kicks += 1
+                self.total_iterations += iteration
+                self.most_iterations = max(self.most_iterations, iteration)
                 record_kick(n, pa.kind, dt, pa.v, b, self.history, a_last, change)
                 self.history = True
                 return

@@ -531,6 +531,9 @@ class MuIScheme(MorrisWalls, Scheme):
                 f"mu(I): the friction law is well-posed {where} (Barker et al. 2015, incompressible); a flow "
                 "outside that range need not converge with the resolution (mpisph/well_posedness.py)")
 
+    def closing_report(self):
+        return (self.implicit_viscosity.summary(),) if self.implicit else ()
+
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)
         inertial_number_and_friction(n, pa.rho[:n], pa.rho_s[:n], self.params, I, mu)
