@@ -45,14 +45,19 @@ def runs_on(tmp_path_factory, name, case, args, ranks=(1, 2), timeout=600):
     return out
 
 
-def signal_when_running(proc, out, signum, timeout=300):
-    """Once the run started as ``proc`` (a Popen with captured text output) has written a few rows of
-    ``out``/diagnostics.csv, send it ``signum``; return its (exit status, stdout, stderr). A run that
-    does not end within ``timeout`` seconds after the signal fails the test."""
+def _has_diagnostics_rows(out):
+    path = out / "diagnostics.csv"
+    return path.exists() and len(path.read_text().splitlines()) > 3
+
+
+def signal_when_running(proc, out, signum, timeout=300, ready=_has_diagnostics_rows):
+    """Once the run started as ``proc`` (a Popen with captured text output) is ``ready(out)`` (by
+    default: it has written a few rows of ``out``/diagnostics.csv), send it ``signum``; return its
+    (exit status, stdout, stderr). A run that does not end within ``timeout`` seconds after the
+    signal fails the test."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline and proc.poll() is None:
-        path = out / "diagnostics.csv"
-        if path.exists() and len(path.read_text().splitlines()) > 3:
+        if ready(out):
             os.kill(proc.pid, signum)
             break
         time.sleep(0.2)

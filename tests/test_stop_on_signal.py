@@ -149,18 +149,9 @@ def test_mpirun_lets_a_rank_end_a_long_step_after_sigusr1_and_after_sigterm_only
         env["OMPI_MCA_odls_base_sigkill_timeout"] = grace
     proc = subprocess.Popen(["mpirun", "-n", "1", sys.executable, str(script), str(tmp_path)], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 60
-    while not (tmp_path / "started").exists() and time.monotonic() < deadline and proc.poll() is None:
-        time.sleep(0.05)
-    if not (tmp_path / "started").exists():
-        proc.kill()
-        pytest.fail(f"the rank did not start: {proc.communicate()}")
-    os.kill(proc.pid, signum)
-    try:
-        _, stderr = proc.communicate(timeout=60)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        pytest.fail("mpirun did not end after the signal")
+    code, _, stderr = signal_when_running(proc, tmp_path, signum, timeout=60,
+                                          ready=lambda out: (out / "started").exists())
+    assert (tmp_path / "started").exists(), stderr
     assert (tmp_path / "finished").exists() == finishes, stderr
     if signum == signal.SIGUSR1:
-        assert proc.returncode == 0, stderr
+        assert code == 0, stderr
