@@ -2,6 +2,7 @@
 the scheme and integrator they select, and the grain compressibility of a chosen Mach number."""
 
 from .case import Param
+from .physics.implicit_viscosity import TOLERANCE
 from .physics.mu_i import (LAW_PRESSURES, LAW_STRAIN_RATES, PRESSURE_FORMS, VISCOSITY_MEANS, VISCOUS_FORMS,
                           VISCOUS_STEPS, VISCOUS_STRESSES)
 
@@ -53,6 +54,9 @@ def mu_i_params(alpha_doc, viscous_step):
                                  "kernel_mean, the modulus of its kernel mean, or deviatoric_kernel_mean, that of "
                                  "the mean's deviator (physics/mu_i.py)",
                                  choices=LAW_STRAIN_RATES),
+        "viscous_tolerance": Param(TOLERANCE, "-", "where the implicit viscous kick's conjugate gradients stop: "
+                                   "the RMS velocity residual over the case's reference speed "
+                                   "(physics/implicit_viscosity.py)", positive=True),
     }
 
 
@@ -63,4 +67,4 @@ def mu_i_scheme(p):
                                 "viscous_step": p.viscous_step, "viscous_stress": p.viscous_stress,
                                 "viscosity_mean": p.viscosity_mean,
                                 "pressure_form": p.pressure_form, "law_pressure": p.law_pressure,
-                                "law_strain_rate": p.law_strain_rate})
+                                "law_strain_rate": p.law_strain_rate, "viscous_tolerance": p.viscous_tolerance})

@@ -10,6 +10,7 @@ import pytest
 from mpi4py import MPI
 
 from mpisph.correction import correction_matrix
+from mpisph.errors import InputError
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL, WALL_SLIP
 from mpisph.physics.implicit_viscosity import (TOLERANCE, ImplicitViscosity, add_along_velocity, viscous_acceleration,
@@ -227,21 +228,23 @@ def test_pair_preconditioner_is_the_diagonal_block(dim, bed_kind, deviatoric):
         np.testing.assert_allclose(inverse[i] @ block, np.eye(dim), atol=1e-12)
 
 
+@pytest.mark.parametrize("deviatoric", [False, True])
 @pytest.mark.parametrize("dim", [2, 3])
-def test_corrected_stress_preconditioner_is_the_diagonal_block(dim):
+def test_corrected_stress_preconditioner_is_the_diagonal_block(dim, deviatoric):
     """stress_blocks inverts m_i (I - dt J_i) with J_i = d a_i / d u_i probed column by column from
-    the divergence itself, on a no-slip bed (it leaves out only free-slip wall partners)."""
+    the divergence itself, of the whole stress or its deviator, on a no-slip bed (it leaves out only
+    free-slip wall partners)."""
     s = bed_lattice(dim, WALL, jitter=0.2)
     B = correction(s)
     dt = 1e-4
     inverse = np.zeros((s.n, dim, dim))
-    stress_blocks(s.n, s.start, s.nbr, s.x, s.rho, s.eta, B, s.mass, s.kind, s.k.params, dt, inverse)
+    stress_blocks(s.n, s.start, s.nbr, s.x, s.rho, s.eta, B, s.mass, s.kind, s.k.params, deviatoric, dt, inverse)
     for i in np.flatnonzero(s.kind == MOVING)[::7]:
         J = np.zeros((dim, dim))
         for a in range(dim):
             u = np.zeros((s.n, dim))
             u[i, a] = 1.0
-            J[:, a] = stress_apply(s, u, B)[i]
+            J[:, a] = stress_apply(s, u, B, deviatoric)[i]
         block = s.mass[i] * (np.eye(dim) - dt * J)
         np.testing.assert_allclose(inverse[i] @ block, np.eye(dim), atol=1e-12)
 
@@ -253,13 +256,9 @@ class NoHalo:
         pass
 
 
-@pytest.mark.parametrize("form", ["pair", "deviatoric_pair", "corrected", "deviatoric"])
-@pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
-@pytest.mark.parametrize("dim", [2, 3])
-def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
-    """At 1000 times the explicit limit of Eq. 39 the kick solves u - dt a_visc[u] = b to the
-    tolerance and takes kinetic energy out, never in, with either viscous form, whole or deviatoric
-    (the corrected deviatoric stress's preconditioner is still the full stress's diagonal block)."""
+def kick_setup(dim, bed_kind, form):
+    """A bed lattice at 1000 times the explicit limit of Eq. 39 and what ImplicitViscosity.kick
+    reads of it: (lattice, B, particles, context, scheme, dt) for the viscous ``form``."""
     corrected, deviatoric = "pair" not in form, "deviatoric" in form
     s = bed_lattice(dim, bed_kind, jitter=0.2 if corrected else 0.0)
     dt = 1000.0 * 0.05 * s.rho.min() * s.k.h**2 / s.eta.max()
@@ -276,16 +275,32 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
     factor, radial, along = pair_term_factors(dim, deviatoric)
     scheme = SimpleNamespace(corrected=corrected, deviatoric_stress=deviatoric, beta_max=1.5,
                              viscous_factor=factor, radial=radial, along=along, mean=MEAN_SECANT)
+    return s, B, pa, ctx, scheme, dt
+
+
+def kick_error(s, B, scheme, u, b, dt):
+    """The RMS over the moving particles of u - dt a_visc[u] - b."""
+    a_visc = stress_apply(s, u, B, scheme.deviatoric_stress) if scheme.corrected else \
+        apply(s, u, MEAN_SECANT, scheme.deviatoric_stress)
+    moving = s.kind == MOVING
+    error = (u - dt * a_visc - b)[moving]
+    return np.sqrt(np.sum(s.mass[moving, None] * error**2) / s.mass[moving].sum())
+
+
+@pytest.mark.parametrize("form", ["pair", "deviatoric_pair", "corrected", "deviatoric"])
+@pytest.mark.parametrize("bed_kind", [WALL, WALL_SLIP])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
+    """At 1000 times the explicit limit of Eq. 39 the kick solves u - dt a_visc[u] = b to the
+    tolerance and takes kinetic energy out, never in, with either viscous form, whole or deviatoric."""
+    s, B, pa, ctx, scheme, dt = kick_setup(dim, bed_kind, form)
     solver = ImplicitViscosity(scheme, u_ref=1.0)
     solver.history = False  # a run from t = 0 (MuIScheme.start)
     solver.kick(ctx, dt)
     u, b = pa.v, s.v
     moving = s.kind == MOVING
-    a_visc = stress_apply(s, u, B, deviatoric) if corrected else apply(s, u, MEAN_SECANT, deviatoric)
-    error = (u - dt * a_visc - b)[moving]
-    rms = np.sqrt(np.sum(s.mass[moving, None] * error**2) / s.mass[moving].sum())
     assert 2 < solver.iterations < 200
-    assert rms < 50 * TOLERANCE  # the stop is on the preconditioned residual
+    assert kick_error(s, B, scheme, u, b, dt) < 50 * TOLERANCE  # the stop is on the preconditioned residual
     assert np.sum(s.mass[:, None] * u**2) < np.sum(s.mass[:, None] * b**2)
     # the next kick starts from b + dt a_visc of this one: from the same b it is already solved
     first = solver.iterations
@@ -296,6 +311,25 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
     rms = np.sqrt(np.sum(s.mass[moving, None] * (pa.v - u)[moving] ** 2) / s.mass[moving].sum())
     assert rms < 50 * TOLERANCE
 
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_viscous_tolerance_sets_where_the_kick_stops(dim):
+    """The option viscous_tolerance moves the stop of the corrected deviatoric stress's kick: each
+    tolerance's solution is within a few times its own RMS residual, and a looser one takes fewer
+    iterations; a tolerance outside (0, 1) is refused."""
+    iterations = []
+    for tolerance in (TOLERANCE, 1e-4):
+        s, B, pa, ctx, scheme, dt = kick_setup(dim, WALL, "deviatoric")
+        solver = ImplicitViscosity(scheme, u_ref=1.0, tolerance=tolerance)
+        solver.history = False
+        solver.kick(ctx, dt)
+        assert kick_error(s, B, scheme, pa.v, s.v, dt) < 50 * tolerance
+        iterations.append(solver.iterations)
+    assert 0 < iterations[1] < iterations[0]
+    for bad in (0.0, 1.0):
+        with pytest.raises(InputError, match="viscous_tolerance"):
+            ImplicitViscosity(scheme, u_ref=1.0, tolerance=bad)
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_the_first_guess_extrapolates_the_last_two_kicks(dim):

@@ -285,7 +285,7 @@ class CorrectedStress:
         ctx.correction_matrices()
         ctx.refresh(["B"])
         stress_blocks(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.eta, pa.B, pa.mass, pa.kind,
-                      ctx.kernel.params, dt, inverse)
+                      ctx.kernel.params, self.scheme.deviatoric_stress, dt, inverse)
 
     def apply(self, ctx, u, out):
         """out = a_visc[u] of the owned particles, u current on the ghosts."""
@@ -305,9 +305,12 @@ class ImplicitViscosity:
     """The backward-Euler viscous kick (module docstring) of a mu_i scheme ``scheme``; its search
     direction is the particle field ``viscous_direction``, sent to ghosts every iteration."""
 
-    def __init__(self, scheme, u_ref):
+    def __init__(self, scheme, u_ref, tolerance=TOLERANCE):
         if not u_ref > 0:
             raise InputError("scheme mu_i: viscous_step = implicit needs the case's reference speed u_ref")
+        if not 0.0 < tolerance < 1.0:
+            raise InputError(f"scheme mu_i: viscous_tolerance must lie between 0 and 1, not {tolerance!r}")
+        self.tolerance = tolerance
         self.operator = CorrectedStress(scheme) if scheme.corrected else PairTerm(scheme)
         self.u_ref = u_ref
         self.total_mass = None
@@ -343,7 +346,7 @@ class ImplicitViscosity:
         op.apply(ctx, pa.v, a_visc)
         residual(n, pa.kind, pa.mass, dt, a_visc, guess, r, inverse, z, p, terms)
         rz = rz0 = global_sums(comm, terms)[0]
-        floor = max(RELATIVE_TOLERANCE**2 * rz0, (TOLERANCE * self.u_ref) ** 2 * self.total_mass)
+        floor = max(RELATIVE_TOLERANCE**2 * rz0, (self.tolerance * self.u_ref) ** 2 * self.total_mass)
         for iteration in range(MAX_ITERATIONS + 1):
             if rz <= floor:
                 self.iterations = iteration

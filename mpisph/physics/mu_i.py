@@ -162,7 +162,7 @@ from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import adjugate, component
 from ..well_posedness import well_posed_window
-from .implicit_viscosity import ImplicitViscosity
+from .implicit_viscosity import TOLERANCE, ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, grain_size, inertial_number, pair_viscosity,
                        regularised_viscosity)
 from .kernel_mean import kernel_mean, rate_modulus
@@ -402,7 +402,9 @@ class MuIScheme(MorrisWalls, Scheme):
     (the grains' pressure of Eq. 41), ``carried`` (the share of it the pairs carry) or
     ``carried_mean`` (its kernel mean) in the friction law, and ``law_strain_rate``: ``own`` (each
     particle's gamma_dot, Eq. 31), ``kernel_mean`` (the modulus of the kernel mean of eps) or
-    ``deviatoric_kernel_mean`` (that of its deviator) in the law (module docstring).
+    ``deviatoric_kernel_mean`` (that of its deviator) in the law (module docstring), and
+    ``viscous_tolerance``: where the implicit kick's iterations stop, as an RMS velocity over the
+    case's reference speed (default 1e-7; implicit_viscosity.py).
     """
 
     name = "mu_i"
@@ -412,7 +414,7 @@ class MuIScheme(MorrisWalls, Scheme):
                Field("friction", (), np.float64, "friction coefficient mu(I) (004_ Eq. 7) [-]"))
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
                "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric",
-               "law_pressure": "state", "law_strain_rate": "own"}
+               "law_pressure": "state", "law_strain_rate": "own", "viscous_tolerance": TOLERANCE}
 
     def __init__(self, case, kernel):
         super().__init__(case, kernel)
@@ -457,7 +459,7 @@ class MuIScheme(MorrisWalls, Scheme):
                                   "the pressure's stress times B, -p tr(B^-1) B / D [Pa]"),)
             self.state_fields += ("T_pressure",)
         if self.implicit:
-            self.implicit_viscosity = ImplicitViscosity(self, case.u_ref)
+            self.implicit_viscosity = ImplicitViscosity(self, case.u_ref, self.option("viscous_tolerance"))
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
                                   "search direction of the implicit viscous kick [m/s]"),
                             Field("viscous_acceleration", ("dim",), np.float64,

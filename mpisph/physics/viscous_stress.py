@@ -137,16 +137,18 @@ def stress_divergence(n, start, nbr, xc, rho, T, mass, kind, normal, k, acc):
 
 
 @njit(cache=True)
-def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
+def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, deviatoric, dt, inverse):
     """inverse_i: the inverse of m_i (I - dt J_i), J_i = d a_i / d u_i the diagonal block of the
     stress divergence at frozen eta and B, of the moving particles (identity elsewhere): the
     preconditioner of the implicit kick. u_i enters the gradient of each neighbour j, whose stress
-    then acts on i: J_i u = -sum_j (m_i m_j / (rho_i^2 rho_j)) 2 eta_j sym(u (x) c_j) c_j with
+    then acts on i: J_i u = -sum_j (m_i m_j / (rho_i^2 rho_j)) 2 eta_j E(u, c_j) with
     c_j = B_j g_ij; and its own gradient through H_i = sum_j V_j g_ij + 2 sum_w (m_w / rho_i) g_iw (no-slip walls):
-    -(2 eta_i / rho_i) sym(u (x) c_i) c_i with c_i = B_i H_i. The free-slip wall partners' part of
-    the latter is left out (the preconditioner only needs to be symmetric positive definite);
-    sym(u (x) c) c = (|c|^2 u + (c . u) c) / 2. Needs eta and B on the ghosts."""
+    -(2 eta_i / rho_i) E(u, c_i) with c_i = B_i H_i. E(u, c) = sym(u (x) c) c = (|c|^2 u + (c . u) c) / 2,
+    with ``deviatoric`` dev(sym(u (x) c)) c = |c|^2 u / 2 + (1 / 2 - 1 / D) (c . u) c. The free-slip
+    wall partners' part of the latter is left out (the preconditioner only needs to be symmetric
+    positive definite). Needs eta and B on the ghosts."""
     dim = xc.shape[1]
+    along = 1.0 - 2.0 / dim if deviatoric else 1.0  # 2 E's coefficient of (c . u) c
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
@@ -165,13 +167,14 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, dt, inverse):
                 w = mass[j] / rho[j] * f
                 h0, h1, h2 = h0 + w * d0, h1 + w * d1, h2 + w * d2
                 c0, c1, c2 = times_vector(B, j, dim, f * d0, f * d1, f * d2)
-                b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], c0, c1, c2)
+                b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], along, c0, c1, c2)
             c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
-            b = _plus_sym(b, dt * eta[i] / rho[i], c0, c1, c2)
+            b = _plus_sym(b, dt * eta[i] / rho[i], along, c0, c1, c2)
         store_scaled_inverse(b, mass[i] if kind[i] == MOVING else 1.0, block, adj, inverse[i])
 
 
 @njit(inline="always")
-def _plus_sym(b, w, c0, c1, c2):
-    """The block b (tensors.IDENTITY_BLOCK) plus w 2 sym(. (x) c) c = w (|c|^2 I + c (x) c)."""
-    return block_less_outer(block_plus_diagonal(b, w * (c0 * c0 + c1 * c1 + c2 * c2)), -w, c0, c1, c2)
+def _plus_sym(b, w, along, c0, c1, c2):
+    """The block b (tensors.IDENTITY_BLOCK) plus w 2 E(., c) = w (|c|^2 I + along c (x) c)
+    (``stress_blocks``)."""
+    return block_less_outer(block_plus_diagonal(b, w * (c0 * c0 + c1 * c1 + c2 * c2)), -w * along, c0, c1, c2)
