@@ -42,10 +42,12 @@ themselves; the search directions vanish on walls, so the iterations apply the
 operator alone. Its dot products are partition-independent sums
 (parallel/exact_sum.py), so the iterates, the iteration count and the particles
 stay bit for bit the same on any number of ranks. The iteration stops when the
-preconditioned residual, as an RMS velocity sqrt(r.z / sum m), is below
-``TOLERANCE`` times the case's reference speed, or ``RELATIVE_TOLERANCE`` times
-its initial value. The run's closing lines give the iterations a kick, the mean
-and the most (``summary``).
+preconditioned residual, as an RMS velocity sqrt(r.z / sum m), is below the
+scheme's option ``viscous_tolerance`` (by default ``TOLERANCE``) times the case's
+reference speed, or ``RELATIVE_TOLERANCE`` times its initial value (1e-5 leaves
+the 3D column's deposit as at 1e-7 with a quarter of the iterations:
+docs/PERFORMANCE.md). The run's closing lines give the iterations a kick, the
+mean and the most (``summary``).
 """
 
 import math
