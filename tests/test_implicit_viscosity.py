@@ -312,7 +312,6 @@ def test_conjugate_gradients_solve_the_backward_euler_kick(dim, bed_kind, form):
     assert rms < 50 * TOLERANCE
 
 
-
 @pytest.mark.parametrize("dim", [2, 3])
 def test_viscous_tolerance_sets_where_the_kick_stops(dim):
     """The option viscous_tolerance moves the stop of the corrected deviatoric stress's kick: each
@@ -330,6 +329,7 @@ def test_viscous_tolerance_sets_where_the_kick_stops(dim):
     for bad in (0.0, 1.0):
         with pytest.raises(InputError, match="viscous_tolerance"):
             ImplicitViscosity(scheme, u_ref=1.0, tolerance=bad)
+
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_the_first_guess_extrapolates_the_last_two_kicks(dim):

@@ -148,7 +148,7 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, deviatoric, dt,
     wall partners' part of the latter is left out (the preconditioner only needs to be symmetric
     positive definite). Needs eta and B on the ghosts."""
     dim = xc.shape[1]
-    along = 1.0 - 2.0 / dim if deviatoric else 1.0  # 2 E's coefficient of (c . u) c
+    outer = 1.0 - 2.0 / dim if deviatoric else 1.0  # 2 E's coefficient of (c . u) c
     block = np.zeros((dim, dim))
     adj = np.zeros((dim, dim))
     for i in range(n):
@@ -167,14 +167,14 @@ def stress_blocks(n, start, nbr, xc, rho, eta, B, mass, kind, k, deviatoric, dt,
                 w = mass[j] / rho[j] * f
                 h0, h1, h2 = h0 + w * d0, h1 + w * d1, h2 + w * d2
                 c0, c1, c2 = times_vector(B, j, dim, f * d0, f * d1, f * d2)
-                b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], along, c0, c1, c2)
+                b = _plus_sym(b, dt * mass[i] * mass[j] / (rho[i] * rho[i] * rho[j]) * eta[j], outer, c0, c1, c2)
             c0, c1, c2 = times_vector(B, i, dim, h0, h1, h2)
-            b = _plus_sym(b, dt * eta[i] / rho[i], along, c0, c1, c2)
+            b = _plus_sym(b, dt * eta[i] / rho[i], outer, c0, c1, c2)
         store_scaled_inverse(b, mass[i] if kind[i] == MOVING else 1.0, block, adj, inverse[i])
 
 
 @njit(inline="always")
-def _plus_sym(b, w, along, c0, c1, c2):
-    """The block b (tensors.IDENTITY_BLOCK) plus w 2 E(., c) = w (|c|^2 I + along c (x) c)
+def _plus_sym(b, w, outer, c0, c1, c2):
+    """The block b (tensors.IDENTITY_BLOCK) plus w 2 E(., c) = w (|c|^2 I + outer c (x) c)
     (``stress_blocks``)."""
-    return block_less_outer(block_plus_diagonal(b, w * (c0 * c0 + c1 * c1 + c2 * c2)), -w * along, c0, c1, c2)
+    return block_less_outer(block_plus_diagonal(b, w * (c0 * c0 + c1 * c1 + c2 * c2)), -w * outer, c0, c1, c2)
