@@ -154,6 +154,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..errors import InputError
 from ..forces import ForceTerm
 from ..kernels import pair_dw
 from ..materials import MuIGranular
@@ -404,7 +405,8 @@ class MuIScheme(MorrisWalls, Scheme):
     particle's gamma_dot, Eq. 31), ``kernel_mean`` (the modulus of the kernel mean of eps) or
     ``deviatoric_kernel_mean`` (that of its deviator) in the law (module docstring), and
     ``viscous_tolerance``: where the implicit kick's iterations stop, as an RMS velocity over the
-    case's reference speed (default 1e-7; implicit_viscosity.py).
+    case's reference speed (default 1e-7; implicit_viscosity.py; another value with the explicit
+    step is an InputError, since it would change nothing).
     """
 
     name = "mu_i"
@@ -422,6 +424,9 @@ class MuIScheme(MorrisWalls, Scheme):
         self.beta_max = self.option("beta_max")
         self.corrected = self.option_choice("viscous_form", VISCOUS_FORMS) == "corrected_stress"
         self.implicit = self.option_choice("viscous_step", VISCOUS_STEPS) == "implicit"
+        if not self.implicit and self.option("viscous_tolerance") != TOLERANCE:
+            raise InputError(f"scheme {self.name}: viscous_tolerance sets where the implicit kick stops, "
+                             "so it needs viscous_step=implicit")
         self.deviatoric_stress = self.option_choice("viscous_stress", VISCOUS_STRESSES) == "deviatoric"
         self.mean = VISCOSITY_MEANS.index(self.option_choice("viscosity_mean", VISCOSITY_MEANS))
         self.isotropic = self.option_choice("pressure_form", PRESSURE_FORMS) == "isotropic"
