@@ -2,7 +2,8 @@
 
 Every run records time, step, dt, particle count, mass, kinetic energy,
 momentum, angular momentum and potential energy in gravity; the scheme adds
-its own sums (the strain energy of elastic solids), every probe of the case
+its own sums (the strain energy of elastic solids) and counters (the mu(I) implicit
+kick's iterations), every probe of the case
 (a particle given by its global id) its displacement from the initial
 position, a case with a ``Front`` the largest distance of a moving
 particle from its origin (a maximum, exact on any number of ranks), and a case
@@ -80,6 +81,7 @@ def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=(), ba
     names = ["t", "step", "dt", "n", "mass", "kinetic_energy"] + [f"momentum_{c}" for c in "xyz"[:dim]] + ang
     names += ["potential_energy"]
     names += list(scheme.observable_names if scheme is not None else ())
+    names += list(scheme.counter_names if scheme is not None else ())
     for probe in probes:
         names += [f"{probe}_u{c}" for c in "xyz"[:dim]]
     if front is not None:
@@ -128,7 +130,8 @@ def global_observables(sim, gauges):
     sim.comm.Allreduce(local, total, op=MPI.SUM)
     k = len(total) - len(probes) * dim
     displacement = total[k:] - np.concatenate([sim.case.probe_origins[name] for name in probes] or [[]])
-    values = [sim.t, sim.step, sim.dt] + total[:k].tolist() + displacement.tolist()
+    counters = sim.parts.scheme.counters()
+    values = [sim.t, sim.step, sim.dt] + total[:k].tolist() + list(counters.values()) + displacement.tolist()
     front = sim.case.front
     if front is not None:
         far = front_distance(n, pa.kind, pa.x, np.asarray(front.origin, float), np.asarray(front.axes, np.int64))

@@ -40,7 +40,8 @@ class Scheme:
     carried_fields = ("v", "rho")  # what a particle carries: corrected to its new place when shifted
     needs_surface = False  # free-surface classes every configuration (surface.py)
     acoustic_cfl = 0.4  # CFL number of the acoustic time step (integrators/time_step.py)
-    observable_names = ()  # its columns of diagnostics.csv
+    observable_names = ()  # its columns of diagnostics.csv that sum over the particles
+    counter_names = ()  # its columns of diagnostics.csv that are the same on every rank
     options = {}  # the discretisation options a case may set (Case.scheme_options) and their defaults
     implicit = False  # takes part of the kick implicitly (implicit_kick)
     integrated_fields = {}  # field: its rate field, which ``rates`` fills and the integrator advances
@@ -115,6 +116,11 @@ class Scheme:
 
     def observables(self, pa, n):
         """{column: sum over the owned particles [0, n)} for ``observable_names``."""
+        return {}
+
+    def counters(self):
+        """{column: value, the same on every rank} for ``counter_names``, once per row of
+        diagnostics.csv."""
         return {}
 
     def report(self):

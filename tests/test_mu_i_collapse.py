@@ -244,22 +244,32 @@ def test_implicit_kick_that_does_not_converge_stops_the_run_with_one_line(tmp_pa
 @pytest.mark.parametrize("step", ["implicit", "explicit"])
 def test_the_closing_lines_say_how_many_iterations_the_implicit_kick_took(tmp_path, capsys, step):
     """A run with the implicit kick ends with a line of its conjugate-gradient iterations, one kick a
-    step (the throughput line's count); the explicit step has no such line."""
+    step (the throughput line's count), and diagnostics.csv has their mean since the row before in
+    the column viscous_iterations, which weighted by the steps between rows gives the closing line's
+    mean; the explicit step has neither."""
     from mpisph.__main__ import main
 
-    code = main(["lube_collapse_2d", "--set", "dp=0.00972", f"viscous_step={step}", "--t-end", "0.01",
-                 "--out", str(tmp_path)])
+    code = main(["lube_collapse_2d", "--set", "dp=0.00972", f"viscous_step={step}", "diagnostics_every=3",
+                 "--t-end", "0.01", "--out", str(tmp_path)])
     out = capsys.readouterr().out
     assert code == 0
     steps = int(re.search(r"^throughput: .*, (\d+) steps,", out, re.M).group(1))
     m = re.search(r"^mu\(I\): the implicit viscous kick took ([\d.]+) conjugate-gradient iterations a step on "
                   r"average, (\d+) at most \((\d+) steps\)$", out, re.M)
+    diag = read_diagnostics(tmp_path / "diagnostics.csv")
     if step == "explicit":
         assert m is None and "conjugate-gradient" not in out
+        assert "viscous_iterations" not in diag
         return
     assert m, out
     assert int(m.group(3)) == steps > 0
-    assert 1 <= float(m.group(1)) <= int(m.group(2)) < 2000
+    mean, most = float(m.group(1)), int(m.group(2))
+    assert 1 <= mean <= most < 2000
+    rows, kicks = diag["viscous_iterations"], np.diff(diag["step"])
+    assert rows[0] == 0.0 and len(rows) > 3  # the first row is the start, before any kick
+    assert np.all((rows[1:] >= 1) & (rows[1:] <= most))
+    assert kicks.sum() == steps
+    assert np.sum(rows[1:] * kicks) / steps == pytest.approx(mean, abs=0.05)
 
 
 @pytest.mark.parametrize("case, dp, warned", [

@@ -47,7 +47,8 @@ scheme's option ``viscous_tolerance`` (by default ``TOLERANCE``) times the case'
 reference speed, or ``RELATIVE_TOLERANCE`` times its initial value (1e-5 leaves
 the 3D column's deposit as at 1e-7 with a quarter of the iterations:
 docs/PERFORMANCE.md). The run's closing lines give the iterations a kick, the
-mean and the most (``summary``).
+mean and the most (``summary``), and diagnostics.csv their mean since the row
+before (the column ``viscous_iterations``, ``mean_since_last_row``).
 """
 
 import math
@@ -318,6 +319,7 @@ class ImplicitViscosity:
         self.total_mass = None
         self.iterations = 0  # the last kick's
         self.kicks = self.total_iterations = self.most_iterations = 0  # since the run's (re)start
+        self.row_kicks = self.row_iterations = 0  # kicks and iterations at the last row of diagnostics.csv
         self.history = True  # the fields hold a last kick (a restart's frame); MuIScheme.start clears it
 
     def summary(self):
@@ -325,6 +327,13 @@ class ImplicitViscosity:
         mean = self.total_iterations / self.kicks if self.kicks else 0.0
         return (f"mu(I): the implicit viscous kick took {mean:.1f} conjugate-gradient iterations a step on "
                 f"average, {self.most_iterations} at most ({self.kicks} steps)")
+
+    def mean_since_last_row(self):
+        """The column viscous_iterations of diagnostics.csv: the kicks' mean conjugate-gradient
+        iterations since the last row (0 where no kick came between), the same on every rank."""
+        kicks, iterations = self.kicks - self.row_kicks, self.total_iterations - self.row_iterations
+        self.row_kicks, self.row_iterations = self.kicks, self.total_iterations
+        return iterations / kicks if kicks else 0.0
 
     def kick(self, ctx, dt):
         """Replace the explicitly kicked velocities b of the owned moving particles (``v``, sent to

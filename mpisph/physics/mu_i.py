@@ -465,6 +465,7 @@ class MuIScheme(MorrisWalls, Scheme):
             self.state_fields += ("T_pressure",)
         if self.implicit:
             self.implicit_viscosity = ImplicitViscosity(self, case.u_ref, self.option("viscous_tolerance"))
+            self.counter_names = ("viscous_iterations",)
             self.fields += (Field("viscous_direction", ("dim",), np.float64,
                                   "search direction of the implicit viscous kick [m/s]"),
                             Field("viscous_acceleration", ("dim",), np.float64,
@@ -540,6 +541,9 @@ class MuIScheme(MorrisWalls, Scheme):
 
     def closing_report(self):
         return (self.implicit_viscosity.summary(),) if self.implicit else ()
+
+    def counters(self):
+        return {"viscous_iterations": self.implicit_viscosity.mean_since_last_row()} if self.implicit else {}
 
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)
