@@ -19,6 +19,11 @@ With ``--at T [T ...]`` it measures each run at the frame nearest each time T in
 frame (the edge speed between that frame and the one before), so that one run gives the deposit
 against time: whether the runout and the centre's height still change once the collapse is over.
 
+With ``--ensemble`` it also prints, for the runs of each shape, a and r_0 / dp (for example the same
+column run with frames at other times, hence other sequences of time steps), the mean runout
+ratio and 95 and 99 % mass extents with their least and greatest, and how many of the runs' edges
+move faster than 1e-3 of the peak front speed at the end.
+
 With ``--profile STEP`` it also prints, for all the runs side by side, the deposit's surface height over
 r_0 at every STEP r_0 from STEP to the farthest grain (0 where no grain lies within dp of the station),
 so that runs at different spacings can be compared along the whole deposit; ``--plot PNG`` draws the
@@ -35,6 +40,7 @@ from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import frame_time, list_frames, read_frame
 
 STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
+REST = 1e-3  # edge speed over the peak front speed below which a deposit is at rest (issue 14)
 FRACTIONS = (0.9, 0.95, 0.99)  # of the mass, for measure.mass_extent
 
 
@@ -100,6 +106,23 @@ def profile_table(deposits, step):
     return lines
 
 
+def ensemble_table(deposits):
+    """Lines of the ``--ensemble`` summary (module docstring) of ``deposits`` (dicts of ``deposit``),
+    a line for each shape, a and r_0 / dp, in order of the three."""
+    groups = {}
+    for d in deposits:
+        groups.setdefault((d["radial"], d["a"], round(d["resolution"], 1)), []).append(d)
+    lines = ["shape a length/dp runs: runout ratio, 95 % and 99 % of the mass within, as mean (least-greatest); "
+             "runs whose edge moves at the end"]
+    for (radial, a, resolution), runs in sorted(groups.items()):
+        columns = [[d["ratio"] for d in runs]] + [[d["extents"][FRACTIONS.index(q)] for d in runs] for q in (0.95, 0.99)]
+        moving = sum(d["rest"] > REST for d in runs)
+        lines.append(f"{'axisymmetric' if radial else 'planar'} {a:g} {resolution:g} {len(runs)}: "
+                     + "; ".join(f"{np.mean(c):.3f} ({min(c):.3f}-{max(c):.3f})" for c in columns)
+                     + f"; {moving} of {len(runs)}")
+    return lines
+
+
 def plot_surfaces(deposits, png):
     """The surfaces of ``deposits`` against the distance, both over the column's length, into ``png``."""
     import matplotlib
@@ -124,6 +147,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--at", type=float, nargs="+", metavar="T", help="measure at the frames nearest these times")
+    ap.add_argument("--ensemble", action="store_true", help="print the mean over the runs of each spacing")
     ap.add_argument("--profile", type=float, metavar="STEP", help="print the surfaces side by side every STEP")
     ap.add_argument("--plot", metavar="PNG", help="draw the surfaces of all the runs into PNG")
     args = ap.parse_args()
@@ -142,6 +166,8 @@ def main():
               f"{d['farthest']:.3f}; "
               + ", ".join(f"{100 * q:g}" for q in FRACTIONS) + " % of the mass within "
               + " ".join(f"{e:.3f}" for e in d["extents"]))
+    if args.ensemble:
+        print("\n".join(ensemble_table(deposits)))
     if args.profile:
         print("\n".join(profile_table(deposits, args.profile)))
     if args.plot:

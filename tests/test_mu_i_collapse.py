@@ -322,6 +322,23 @@ def test_the_deposit_script_reads_a_column_that_has_barely_moved(planar):
     assert list(rows) == [0.25, 0.5, 0.75, 1.0] and d["farthest"] < 0.25  # stations up to the farthest grain
 
 
+def test_the_deposit_script_averages_the_runs_of_each_spacing():
+    """collapse_deposit.ensemble_table: a line for each shape, a and spacing, in that order, with the
+    mean, least and greatest runout ratio and 95 and 99 % extents of its runs, and how many of them
+    have an edge that moves faster than 1e-3 of the peak front speed."""
+    ensemble_table = load_script("collapse_deposit").ensemble_table
+
+    def run(resolution, ratio, rest, radial=False):
+        return {"radial": radial, "a": 0.5, "resolution": resolution, "ratio": ratio, "rest": rest,
+                "extents": [ratio - 0.3, ratio - 0.2, ratio - 0.1]}
+
+    lines = ensemble_table([run(40.0, 0.5, 1e-4), run(20.0, 0.4, 2e-3), run(40.0, 0.6, 2e-3), run(40.0, 0.7, 1e-5),
+                            run(20.0, 0.3, 1e-4, radial=True)])
+    assert lines[1:] == ["planar 0.5 20 1: 0.400 (0.400-0.400); 0.200 (0.200-0.200); 0.300 (0.300-0.300); 1 of 1",
+                         "planar 0.5 40 3: 0.600 (0.500-0.700); 0.400 (0.300-0.500); 0.500 (0.400-0.600); 1 of 3",
+                         "axisymmetric 0.5 20 1: 0.300 (0.300-0.300); 0.100 (0.100-0.100); 0.200 (0.200-0.200); 0 of 1"]
+
+
 def test_the_well_posedness_script_reads_the_planar_column(planar):
     """scripts/well_posedness.py on the coarse planar column: the sand's window (0.432 < I < 1.82),
     nothing dissipated at rest at t = 0, and at 0.1 s, as the column fails, more than nine tenths of
