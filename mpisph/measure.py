@@ -184,6 +184,9 @@ def weighted_quantile(values, weights, share):
     return float(values[order][np.searchsorted(cumulative, share * cumulative[-1])])
 
 
+AT_REST = 1e-3  # edge_rest_ratio at or below which a deposit is at rest (004_ Sec. 5.2, issue 14)
+
+
 def edge_rest_ratio(before, last, t, front, dp, radial=False):
     """How far a collapse's deposit is from rest: the speed of its edge (``front_position``) from
     the frame ``before`` to the frame ``last``, over the peak speed of its front ``front`` (the

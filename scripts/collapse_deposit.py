@@ -40,7 +40,6 @@ from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import frame_time, list_frames, read_frame
 
 STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
-REST = 1e-3  # edge speed over the peak front speed below which a deposit is at rest (issue 14)
 FRACTIONS = (0.9, 0.95, 0.99)  # of the mass, for measure.mass_extent
 
 
@@ -108,7 +107,7 @@ def profile_table(deposits, step):
 
 def ensemble_table(deposits):
     """Lines of the ``--ensemble`` summary (module docstring) of ``deposits`` (dicts of ``deposit``),
-    a line for each shape, a and r_0 / dp, in order of the three."""
+    a line for each shape (planar first), a and r_0 / dp, sorted by the three."""
     groups = {}
     for d in deposits:
         groups.setdefault((d["radial"], d["a"], round(d["resolution"], 1)), []).append(d)
@@ -116,7 +115,7 @@ def ensemble_table(deposits):
              "runs whose edge moves at the end"]
     for (radial, a, resolution), runs in sorted(groups.items()):
         columns = [[d["ratio"] for d in runs]] + [[d["extents"][FRACTIONS.index(q)] for d in runs] for q in (0.95, 0.99)]
-        moving = sum(d["rest"] > REST for d in runs)
+        moving = sum(d["rest"] > measure.AT_REST for d in runs)
         lines.append(f"{'axisymmetric' if radial else 'planar'} {a:g} {resolution:g} {len(runs)}: "
                      + "; ".join(f"{np.mean(c):.3f} ({min(c):.3f}-{max(c):.3f})" for c in columns)
                      + f"; {moving} of {len(runs)}")

@@ -10,7 +10,7 @@ from mpisph.well_posedness import ill_posed_energy_share, well_posed_window
 from .runs import run
 
 
-REST = 1e-3  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
+REST = measure.AT_REST  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
 
 
 def collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_frames=20):
