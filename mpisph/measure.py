@@ -184,7 +184,7 @@ def weighted_quantile(values, weights, share):
     return float(values[order][np.searchsorted(cumulative, share * cumulative[-1])])
 
 
-AT_REST = 1e-3  # edge_rest_ratio at or below which a deposit is at rest (004_ Sec. 5.2, issue 14)
+AT_REST = 1e-3  # edge_rest_ratio at or below which a deposit is at rest (004_ Sec. 5.2: three orders of magnitude)
 
 
 def edge_rest_ratio(before, last, t, front, dp, radial=False):

@@ -114,7 +114,8 @@ def ensemble_table(deposits):
     lines = ["shape a length/dp runs: runout ratio, 95 % and 99 % of the mass within, as mean (least-greatest); "
              "runs whose edge moves at the end"]
     for (radial, a, resolution), runs in sorted(groups.items()):
-        columns = [[d["ratio"] for d in runs]] + [[d["extents"][FRACTIONS.index(q)] for d in runs] for q in (0.95, 0.99)]
+        columns = [[d["ratio"] for d in runs]]
+        columns += [[d["extents"][FRACTIONS.index(q)] for d in runs] for q in (0.95, 0.99)]
         moving = sum(d["rest"] > measure.AT_REST for d in runs)
         lines.append(f"{'axisymmetric' if radial else 'planar'} {a:g} {resolution:g} {len(runs)}: "
                      + "; ".join(f"{np.mean(c):.3f} ({min(c):.3f}-{max(c):.3f})" for c in columns)

@@ -215,7 +215,8 @@ def test_axisymmetric_column_is_a_cylinder_and_spreads_evenly(tmp_path):
 @pytest.mark.parametrize("settings, words", [
     (["a=0"], "parameter a must be positive"),
     (["K_t=-1e-5"], "K_t"),
-    (["viscous_step=explicit", "viscous_tolerance=1e-5"], "viscous_tolerance sets where the implicit kick stops, so it needs viscous_step=implicit"),
+    (["viscous_step=explicit", "viscous_tolerance=1e-5"],
+     "viscous_tolerance sets where the implicit kick stops, so it needs viscous_step=implicit"),
     (["viscous_tolerance=1.5"], "viscous_tolerance must lie between 0 and 1"),
 ])
 def test_bad_settings_are_one_line_errors(tmp_path, settings, words):

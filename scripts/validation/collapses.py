@@ -10,9 +10,6 @@ from mpisph.well_posedness import ill_posed_energy_share, well_posed_window
 from .runs import run
 
 
-REST = measure.AT_REST  # 004_ Sec. 5.2: a deposit's front moves at least three orders of magnitude slower than at its peak
-
-
 def collapse(case, a, length, dp, ranks, radial, variant=(), t_end=None, n_frames=20):
     """One mu(I) collapse of aspect ratio ``a`` (column length or radius ``length``) to ``t_end``,
     by default 6 sqrt(H_0/g) (at least 0.6 s), with ``n_frames`` frames: its diagnostics, last frame,
@@ -71,4 +68,4 @@ def front_panel(ax, runs, length, symbol):
 
 def rest_row(r, what):
     return (f"a = {r['a']:g}: speed of {what} over the last frame interval / peak front speed", f"{r['rest']:.1e}",
-            f"<= {REST:g}", "-", f"{REST:g}", r["rest"] <= REST)
+            f"<= {measure.AT_REST:g}", "-", f"{measure.AT_REST:g}", r["rest"] <= measure.AT_REST)

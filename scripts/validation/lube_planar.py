@@ -8,7 +8,7 @@ import numpy as np
 from mpisph import measure, references
 from mpisph.granular_flow import CONSISTENT_MU_I, DEVIATORIC_MU_I
 
-from .collapses import REST, collapse, front_panel, ill_posed_row, rest_row
+from .collapses import collapse, front_panel, ill_posed_row, rest_row
 from .figures import save
 
 
@@ -63,7 +63,7 @@ def lube_collapse_2d(ranks):
         rows += [(f"a = {a_k:g} with {what}: (L_inf - L_0) / L_0", f"{r['ratio']:.2f}", f"{1.2 * a_k:.2f}",
                   f"{100 * (r['ratio'] / (1.2 * a_k) - 1):+.0f}%", "-"),
                  (f"a = {a_k:g} with {what}: H_inf / L_0; edge speed / peak; onset [s]",
-                  f"{height:.3f}; {r['rest']:.1e}; {r['onset']:.3f}", f"{a_k:g}; <= {REST:g}; -", "-", "-")]
+                  f"{height:.3f}; {r['rest']:.1e}; {r['onset']:.3f}", f"{a_k:g}; <= {measure.AT_REST:g}; -", "-", "-")]
     exponent, fits = _planar_fits(a, ratio)
     rows += fits + _fit_spread("", (), runs, L0, dp, ranks)
     for channel, (n, spread) in references.PLANAR_RUNOUT_EXPONENTS.items():
@@ -131,7 +131,7 @@ def _variant_collapses(label, variant, aspects, L0, dp, ranks, ax, marker):
              " / ".join(f"{x:.2f}" for x in ratio),
              " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in a), "-", "-"),
             (f"{label}: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
-             f"<= {REST:g}", "-", f"{REST:g}", all(r["rest"] <= REST for r in runs)),
+             f"<= {measure.AT_REST:g}", "-", f"{measure.AT_REST:g}", all(r["rest"] <= measure.AT_REST for r in runs)),
             (f"{label}: onset [s]", " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-")]
     return rows + _planar_fits(a, ratio, f"{label}: ")[1] + _fit_spread(f"{label}: ", variant, runs, L0, dp, ranks)
 
