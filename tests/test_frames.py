@@ -235,5 +235,18 @@ def test_diagnostics_serial(tmp_path):
         diag.record({"t": 0.5, "step": 2, "energy": 1.0})
     d = read_diagnostics(tmp_path / "diagnostics.csv")
     assert list(d["step"]) == [0, 1, 2] and d["t"][-1] == 0.5
-    with pytest.raises(InputError, match="columns differ"):
+    with pytest.raises(InputError, match="columns differ.*it has step,energy,"):
         Diagnostics(tmp_path, COMM, ["t", "other"], append=True)
+
+
+def test_diagnostics_widened_on_restart(tmp_path):
+    """A file of an earlier version, without a column this run writes, continues with nan there."""
+    with Diagnostics(tmp_path, COMM, ["t", "energy"]) as diag:
+        for step in range(3):
+            diag.record({"t": step / 3, "energy": np.pi * step})
+    with Diagnostics(tmp_path, COMM, ["t", "iterations", "energy"], append=True, restart_time=1 / 3) as diag:
+        diag.record({"t": 0.5, "iterations": 4, "energy": 1.0})
+    d = read_diagnostics(tmp_path / "diagnostics.csv")
+    assert list(d) == ["t", "iterations", "energy"]
+    assert np.array_equal(d["t"], [0.0, 1 / 3, 0.5]) and np.array_equal(d["energy"], [0.0, np.pi, 1.0])
+    assert np.isnan(d["iterations"][:2]).all() and d["iterations"][2] == 4

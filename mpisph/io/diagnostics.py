@@ -30,8 +30,10 @@ class Diagnostics:
     ``columns`` are the column names.  A new file (header only) is created
     unless ``append`` is true; then the existing file is continued after
     dropping its rows with ``t`` > ``restart_time`` (a restarted run repeats
-    those steps), so the CSV stays continuous.  The header of an existing
-    file must match ``columns``.
+    those steps), so the CSV stays continuous.  An existing file written by
+    an earlier version with fewer columns is widened to ``columns``, its rows
+    holding ``nan`` where that version recorded nothing; one with a column
+    that ``columns`` lacks is refused.
     """
 
     def __init__(self, out_dir, comm, columns, append=False, *,
@@ -55,9 +57,7 @@ class Diagnostics:
         if append and os.path.exists(self.path):
             with open(self.path, newline="") as f:
                 rows = list(csv.reader(f))
-            if not rows or rows[0] != self.columns:
-                raise InputError(f"{self.path}: columns differ from this run "
-                                 f"({header})")
+            rows = _widened(rows, self.columns, self.path)
             if restart_time is not None:
                 t = self.columns.index("t")
                 rows = [rows[0]] + [r for r in rows[1:]
@@ -90,6 +90,21 @@ class Diagnostics:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def _widened(rows, columns, path):
+    """The rows of an existing file (header first) in the order of ``columns``, with ``nan``
+    in the columns its header lacks; an InputError when it has one that ``columns`` lacks."""
+    if not rows:
+        raise InputError(f"{path}: no header; this run writes {','.join(columns)}")
+    if rows[0] == columns:
+        return rows
+    extra = [c for c in rows[0] if c not in columns]
+    if extra:
+        raise InputError(f"{path}: columns differ from this run: it has {','.join(extra)}, "
+                         f"which this run does not write ({','.join(columns)})")
+    at = {c: i for i, c in enumerate(rows[0])}
+    return [columns] + [[r[at[c]] if c in at else "nan" for c in columns] for r in rows[1:]]
 
 
 def read_diagnostics(path):
