@@ -86,8 +86,13 @@ def koshizuka_oka_front(T):
     return np.interp(T, KOSHIZUKA_T, KOSHIZUKA_Z)
 
 
-def martin_moyce_speed(lo=1.9, hi=3.1):
-    """dZ/dT of Martin & Moyce's front between T = lo and hi, the points joined by straight lines."""
+# The span of T over which issue 13 compares the late front speed with Martin & Moyce's.
+MARTIN_MOYCE_SPAN = (1.9, 3.1)
+
+
+def martin_moyce_speed():
+    """dZ/dT of Martin & Moyce's front over MARTIN_MOYCE_SPAN, the points joined by straight lines."""
+    lo, hi = MARTIN_MOYCE_SPAN
     return (np.interp(hi, MARTIN_MOYCE_T, MARTIN_MOYCE_Z) - np.interp(lo, MARTIN_MOYCE_T, MARTIN_MOYCE_Z)) / (hi - lo)
 
 # Rotating square patch (000_ Eq. 44): centre pressure over rho omega^2 L^2.

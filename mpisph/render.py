@@ -37,11 +37,12 @@ def _figure(panels, width=5.0, height=4.2):
     return fig
 
 
-def snapshots_png(out_dir, times, png_path, view=(25.0, -60.0), vmax=None, title=""):
-    """Perspective views of the run in ``out_dir`` at ``times``, coloured by speed; returns the path."""
+def snapshots_png(out_dir, times, png_path, view=(25.0, -60.0), title=""):
+    """Perspective views of the run in ``out_dir`` at ``times``, coloured by speed up to the 99.5th
+    percentile of any of them; returns the path."""
     frames = frames_at(out_dir, times)
     speeds = [np.linalg.norm(f["v"][f["kind"] == MOVING], axis=1) for f in frames]
-    top = vmax if vmax is not None else max(float(np.percentile(s, 99.5)) for s in speeds if len(s)) or 1.0
+    top = max(float(np.percentile(s, 99.5)) for s in speeds if len(s)) or 1.0
     fig = _figure(len(frames))
     everything = np.concatenate([f["x"] for f in frames])
     lo, hi = everything.min(axis=0), everything.max(axis=0)
@@ -81,9 +82,10 @@ def plane_coordinates(x, origin, u, v):
     return d @ u, d @ v, np.abs(d @ n)
 
 
-def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", label="", vmax=None, title=""):
+def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", label="", title=""):
     """The moving particles within dp/2 of the plane origin + a u + b v at ``times``, in the plane's
-    coordinates (a along u, b along v), coloured by ``field``; returns the path."""
+    coordinates (a along u, b along v), coloured by ``field`` up to its largest value in any of them;
+    returns the path."""
     frames = frames_at(out_dir, times)
     fig = _figure(len(frames), width=4.5, height=4.5)
     cuts = []
@@ -95,7 +97,7 @@ def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", la
         a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
         near = dist < 0.5 * dp
         cuts.append((a[near], b[near], np.asarray(f[field][moving])[near], dp))
-    top = vmax if vmax is not None else max(float(c[2].max()) for c in cuts if len(c[2])) or 1.0
+    top = max(float(c[2].max()) for c in cuts if len(c[2])) or 1.0
     for k, (f, (a, b, value, dp)) in enumerate(zip(frames, cuts)):
         ax = fig.add_subplot(1, len(frames), k + 1)
         sc = ax.scatter(a, b, c=value, s=4.0, cmap="magma_r", vmin=0.0, vmax=top, linewidths=0, rasterized=True)

@@ -29,18 +29,16 @@ def continuous_region(surfaces, lo, hi, spacing, depth):
     return x[np.any(behind & (dist < depth), axis=1)]
 
 
-def push(points, volume, probes, normals, kernel, chunk=64):
+def push(points, volume, probes, normals, kernel):
     """sum_j V_j grad W(probe - x_j) . n over ``points`` (each of volume ``volume``) at each probe,
-    with n its row of ``normals`` and W the ``kernel`` (kernels.Kernel)."""
-    out = np.zeros(len(probes))
-    for a in range(0, len(probes), chunk):
-        p, n = probes[a:a + chunk], normals[a:a + chunk]
-        near = points[np.all((points > p.min(axis=0) - kernel.support) & (points < p.max(axis=0) + kernel.support), axis=1)]
-        d = p[:, None, :] - near[None]
-        r = np.linalg.norm(d, axis=2)
-        dw = kernel.derivative(np.minimum(r, kernel.support))
-        out[a:a + chunk] = volume * np.einsum("pj,pjk,pk->p", dw / np.maximum(r, 1e-300), d, n)
-    return out
+    with n its row of ``normals`` and W the ``kernel`` (kernels.Kernel); the probes and the points
+    within the kernel's support of their box as one dense array, so the caller passes a few probes."""
+    near = points[np.all((points > probes.min(axis=0) - kernel.support)
+                         & (points < probes.max(axis=0) + kernel.support), axis=1)]
+    d = probes[:, None, :] - near[None]
+    r = np.linalg.norm(d, axis=2)
+    dw = kernel.derivative(np.minimum(r, kernel.support))
+    return volume * np.einsum("pj,pjk,pk->p", dw / np.maximum(r, 1e-300), d, normals)
 
 
 def push_over_continuous(surfaces, walls, dp, depth, probes, normals, kernel, chunk=64):

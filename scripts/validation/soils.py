@@ -134,10 +134,11 @@ def cohesive_failure(ranks):
     return "Cohesive soil cut (dp = L/100)", shown, rows, image, note
 
 
-def soil_cylinder(ranks, dp=0.0005):
+def soil_cylinder(ranks):
     """002_ Sec. 5 (Tables 1-2, dp = 0.5 mm, to 10 ms) with its classic scheme, the Riemann scheme
     beside it: the width against time (2 x the front: the case is symmetric about x = 0) and the
     deformed cylinder at 1-4 ms (002_ Figs. 9-10)."""
+    dp = 0.0005
     D, impact = 0.05, 0.0015 / 5.0
     runs = {scheme: run(f"soil_cylinder_{scheme}", "soil_cylinder_impact", ["--set", f"dp={dp}", f"scheme={scheme}"],
                         ranks) for scheme in ("classic_granular", "riemann_granular")}
