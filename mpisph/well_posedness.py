@@ -17,11 +17,38 @@ law is well-posed in one window of inertial numbers (or nowhere): glass beads
 Lube's columns (I_0 = 2.65) from 0.43 to 1.8 (tests/test_well_posedness.py).
 
 The criterion is the incompressible one; 004_'s grains are weakly compressible
-(Mach 0.1) and dilate with I (Eq. 8). Barker, Schaeffer, Shearer & Gray (2017,
-Proc. R. Soc. A 473) show that compressibility can make the equations
-well-posed under conditions on the dilatancy law; whether Eq. 8 meets them is
-not established here. These functions tell in which range of I a flow runs,
-not how the discrete scheme behaves.
+(Mach 0.1) and dilate with I (Eq. 8). Heyman, Delannay, Tabuteau & Valance
+(2017, J. Fluid Mech. 830; arXiv 1609.01502) show that the compressible
+equations are well-posed when enough dissipation goes with volume changes: a
+bulk stress mu_b p tr(D) / |D| I beside the shear stress mu p dev(D) / |D|,
+|D| = sqrt(D:D / 2) = gamma_dot / 2, with mu_b > 1 - 7 mu / 6 in their model,
+where the pressure follows the volume fraction through phi(I) (stiff grains).
+For the short waves that decide well-posedness the density is frozen and only
+the stress's dependence on the velocity gradient counts; about a simple shear,
+with n = d ln p / d ln gamma_dot and nu_b = d ln mu / d ln gamma_dot at fixed
+density, a longitudinal wave along the shear's stretching axis, k = (1, 1, 0)
+/ sqrt 2, has the stiffness
+
+    p / |D| (2 mu_b - n + mu (n + nu_b + (D - 2) / 3))
+
+(the divergence of the linearised stress projected on k: -n p r from the
+pressure, mu p (dev(k k) + (nu_b + n - 1) r D_0) / |D| from the shear term,
+r = d|D| / |D| = 1 for this wave, and the bulk term), so the equations are
+ill-posed unless mu_b >= n / 2 - mu (n + nu_b + (D - 2) / 3) / 2
+(``compressible_bulk_friction_bound``). With stiff grains (n = 2, nu_b = 0)
+this is Heyman et al.'s 1 - 7 mu / 6 in 3D and 1 - mu in 2D (their arXiv v1
+gives D times each, its bulk term on tr(D) / D); tests/test_well_posedness.py
+checks that no other direction of wave or of velocity needs more, by the
+eigenvalues of the linearised stress over all directions. 004_'s grains are
+softer: at fixed density Eq. 44 gives n and nu_b below 2 and nu
+(``rate_exponents``), and both tend to 0 as I does, where the bound falls to
+-mu / 6 in 3D and 0 in 2D. The solver's viscous stresses carry the bulk
+frictions of ``solver_bulk_friction``. This is the limit of short waves
+only: longer waves, for which the grains are as good as incompressible, obey
+the incompressible criterion above; where the one hands over to the other
+(about where the sound speed times the wavenumber meets the kinematic
+viscosity times its square) is not computed here. These functions tell in
+which range of I a flow runs, not how the discrete scheme behaves.
 
 partially_regularised_friction is Barker & Gray 2017's remedy below the window, kept to measure
 what it would do to a material (scripts/well_posedness.py --materials, docs/COLLAPSES.md); the
@@ -39,7 +66,8 @@ from .references import MU_I_MATERIALS
 
 def table_1_law(name, **changes):
     """MuIParams of a material of 004_ Table 1 (references.MU_I_MATERIALS), with ``changes``; the
-    fields that well-posedness does not read (phi, rho_s0, K_t, tau_0, m_0) are placeholders."""
+    fields that the incompressible criterion does not read (phi, rho_s0, K_t, tau_0, m_0) are
+    placeholders."""
     m = MU_I_MATERIALS[name]
     mu_s, mu_2 = (math.tan(math.radians(m[k])) for k in ("mu_s_deg", "mu_2_deg"))
     return MuIParams(mu_s, mu_2, m["I_0"], 0.0, 0.6, 0.5, 2500.0, m["d"], 1e-5, 100.0, 1.0)._replace(**changes)
@@ -50,8 +78,7 @@ def ill_posedness(I, m):
     well-posed. mu is mu_i_law.friction (004_ Eq. 7, Eq. 18 with m.I_s > 0), mu' its derivative
     (mu_2 - mu_s) I_0 / (I + I_s + I_0)^2."""
     I = np.asarray(I, dtype=float)
-    mu = friction(I, m)
-    return criterion(I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / mu, mu)
+    return criterion(friction_exponent(I, m), friction(I, m))
 
 
 def criterion(nu, mu):
@@ -120,6 +147,65 @@ def partial_regularisation_alphas(m):
             _crossing(admissible, alphas[last], alphas[last + 1]))
 
 
+def compressible_bulk_friction_bound(mu, n, nu_b, dim):
+    """The least bulk friction mu_b for which the compressible mu(I) equations are well-posed about a
+    shear flow of friction ``mu`` whose pressure and friction rise with the strain rate at fixed
+    density as gamma_dot^n and gamma_dot^nu_b (module docstring): n / 2 - mu (n + nu_b + (D - 2) / 3) / 2."""
+    return 0.5 * n - 0.5 * mu * (n + nu_b + (dim - 2.0) / 3.0)
+
+
+def rate_exponents(I, grain_ratio, m, dim):
+    """(n, nu_b) = d ln (p, mu) / d ln gamma_dot at fixed bulk density of 004_'s grains at inertial
+    number ``I`` and grain density ``grain_ratio`` x = rho_s / rho_s0 (arrays or numbers). Eq. 44 ties
+    them to gamma_dot^2 through F(x) = (phi_max - phi)^2 (x - 1) x^(2/D - 1), phi = rho / (x rho_s0)
+    (mu_i_law.py), so that d ln x / d ln gamma_dot = 2 / (a + b + 2/D - 1), a = 2 phi / (phi_max -
+    phi) = d ln (phi_max - phi)^2 / d ln x, b = x / (x - 1); p = (x - 1) / K_t gives n = 2 b / (...)
+    and I = (phi_max - phi) / (phi_max - phi_min) gives nu_b = nu a / (...), nu = I mu'(I) / mu.
+    Stiff grains (x -> 1): n -> 2, nu_b -> 0; I -> 0: both -> 0."""
+    I, x = np.asarray(I, dtype=float), np.asarray(grain_ratio, dtype=float)
+    phi = m.phi_max - (m.phi_max - m.phi_min) * I
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = 2.0 * phi / ((m.phi_max - m.phi_min) * I)
+        b = x / (x - 1.0)
+        total = a + b + 2.0 / dim - 1.0
+        n = np.where(x > 1.0, np.where(I > 0.0, 2.0 * b / total, 0.0), 2.0)
+        nu_b = np.where((x > 1.0) & (I > 0.0), friction_exponent(I, m) * a / total, 0.0)
+    return n, nu_b
+
+
+def friction_exponent(I, m):
+    """nu = I mu'(I) / mu(I) of 004_'s law (friction), mu' = (mu_2 - mu_s) I_0 / (I + I_s + I_0)^2."""
+    I = np.asarray(I, dtype=float)
+    return I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / friction(I, m)
+
+
+def solver_bulk_friction(mu, viscous_form, viscous_stress, dim):
+    """The bulk friction mu_b = xi mu / (2 eta) of the solver's viscous stress, xi its bulk viscosity
+    (physics/mu_i.py): Eq. 27's pair term (1 + 2 / D) eta, the corrected full stress 2 eta eps's
+    2 eta / D, the deviatoric stress and the deviatoric pair term none."""
+    if viscous_stress == "deviatoric":
+        return 0.0 * mu
+    return mu * (dim + 2.0) / (2.0 * dim) if viscous_form == "cleary" else mu / dim
+
+
+def compressible_ill_posed_share(frame, case):
+    """The share of a frame's viscous dissipation (dissipation_rate) at grains whose solver bulk
+    friction lies below compressible_bulk_friction_bound for their state (the frame's I and grain
+    density, ``case``'s material and viscous stress); NaN in a frame that dissipates nothing."""
+    power = dissipation_rate(frame)
+    total = power.sum()
+    if not total > 0.0:
+        return math.nan
+    m, dim = case.material.params, case.dim
+    I = frame["inertial_number"]
+    mu = friction(I, m)
+    n, nu_b = rate_exponents(I, frame["rho_s"] / m.rho_s0, m, dim)
+    options = case.scheme_options
+    short = solver_bulk_friction(mu, options["viscous_form"], options["viscous_stress"], dim) < \
+        compressible_bulk_friction_bound(mu, n, nu_b, dim)
+    return float(power[short].sum() / total)
+
+
 def dissipation_rate(frame):
     """Each particle's viscous dissipation rate eta gamma_dot^2 m / rho [W] (0 for a wall)."""
     return np.where(frame["kind"] == MOVING, frame["eta"] * frame["gamma_dot"] ** 2 * frame["mass"] / frame["rho"],
@@ -141,10 +227,17 @@ def ill_posed_dissipation_share(frame, window):
 
 
 def ill_posed_energy_share(frames, window):
+    """The share of the energy a run dissipated at inertial numbers outside ``window``
+    (energy_share of ill_posed_dissipation_share)."""
+    return energy_share(frames, lambda f: ill_posed_dissipation_share(f, window))
+
+
+def energy_share(frames, share):
     """The share of the energy a run dissipated, the frames' dissipation rates integrated in time
-    by trapezoids, at inertial numbers outside ``window``; NaN where nothing was dissipated."""
+    by trapezoids, where ``share`` (a frame's share of its dissipation rate) counts it; NaN where
+    nothing was dissipated."""
     t = np.array([f["t"] for f in frames])
     rate = np.array([dissipation_rate(f).sum() for f in frames])
-    share = np.nan_to_num(np.array([ill_posed_dissipation_share(f, window) for f in frames]))
+    shares = np.nan_to_num(np.array([share(f) for f in frames]))
     energy = np.trapezoid(rate, t)
-    return float(np.trapezoid(rate * share, t) / energy) if energy > 0.0 else math.nan
+    return float(np.trapezoid(rate * shares, t) / energy) if energy > 0.0 else math.nan

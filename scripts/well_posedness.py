@@ -2,17 +2,25 @@
 
     .venv/bin/python scripts/well_posedness.py RUN [RUN ...]
     .venv/bin/python scripts/well_posedness.py --materials
+    .venv/bin/python scripts/well_posedness.py --compressible
 
 For each run (any mu(I) case: its material is built again from the frames' parameters): the window
 of inertial numbers (I_1, I_2) where the law is well-posed, and for each frame the grains' viscous
 dissipation rate (sum of eta gamma_dot^2 m / rho), the share of it at I outside the window, and the
 inertial numbers below which a quarter, half and three quarters of it happens. The last line weighs
 the frames' shares by their dissipation over the run (trapezoids in time): the share of all the
-energy the run dissipated where the law is ill-posed.
+energy the run dissipated where the law is ill-posed. Beside it, the share at grains whose viscous
+stress carries less bulk friction than the compressible equations need to be well-posed for their
+state (compressible_bulk_friction_bound: the short-wave limit, after Heyman et al. 2017).
 
 --materials prints, for each material of 004_ Table 1, its window, the alphas for which Barker & Gray
 2017's partial regularisation is well-posed below it, and the friction at low I of 004_'s law beside
 the regularised law's with the largest of those alphas (the nearest to 004_'s).
+
+--compressible prints, for Lube's planar and axisymmetric columns with their cases' defaults, at the
+foot's hydrostatic pressure and a quarter of it, against I: the rate exponents n and nu_b of the
+grains at fixed density, the least bulk friction of the compressible equations and the bulk friction
+of each of the solver's viscous stresses.
 """
 
 import argparse
@@ -20,29 +28,57 @@ import math
 
 import numpy as np
 
-from mpisph.case import case_of_frame
+from mpisph.case import build_case, case_of_frame, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import weighted_quantile
 from mpisph.physics.mu_i_law import friction
 from mpisph.references import MU_I_MATERIALS
-from mpisph.well_posedness import dissipation_rate, ill_posed_dissipation_share, ill_posed_energy_share, \
-    partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
+from mpisph.well_posedness import compressible_bulk_friction_bound, compressible_ill_posed_share, \
+    dissipation_rate, energy_share, ill_posed_dissipation_share, ill_posed_energy_share, \
+    partial_regularisation_alphas, partially_regularised_friction, rate_exponents, solver_bulk_friction, \
+    table_1_law, well_posed_window
 
 LOW_I = (1e-2, 1e-3, 1e-4)
+COLUMN_I = (1e-4, 1e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0)
+STRESSES = (("cleary", "full"), ("corrected_stress", "full"), ("cleary", "deviatoric"))
 
 
 def run_table(run):
-    """(window, rows, overall share): a row per frame (t, dissipation rate, share outside the window,
-    the I quartiles of the dissipation); the overall share (ill_posed_energy_share) is NaN where
-    nothing dissipated."""
+    """(window, rows, overall shares): a row per frame (t, dissipation rate, share outside the window,
+    share short of the compressible bound, the I quartiles of the dissipation); the overall shares
+    (ill_posed_energy_share and energy_share of compressible_ill_posed_share) are NaN where nothing
+    dissipated."""
     frames = [read_frame(f) for f in list_frames(run)]
-    window = well_posed_window(case_of_frame(frames[-1]["params"]).material.params)
+    case = case_of_frame(frames[-1]["params"])
+    window = well_posed_window(case.material.params)
     rows = []
     for f in frames:
         power = dissipation_rate(f)
         quartiles = [weighted_quantile(f["inertial_number"], power, q) for q in (0.25, 0.5, 0.75)] if power.sum() > 0 else []
-        rows.append((f["t"], float(power.sum()), ill_posed_dissipation_share(f, window), quartiles))
-    return window, rows, ill_posed_energy_share(frames, window)
+        rows.append((f["t"], float(power.sum()), ill_posed_dissipation_share(f, window),
+                     compressible_ill_posed_share(f, case), quartiles))
+    return window, rows, (ill_posed_energy_share(frames, window),
+                          energy_share(frames, lambda f: compressible_ill_posed_share(f, case)))
+
+
+def column_rows(case_name):
+    """For the case's default column: (its foot's hydrostatic pressure, rows), a row per pressure (the
+    foot's and a quarter of it) and I of COLUMN_I: p, I, mu, n, nu_b, the compressible bound and the
+    bulk friction of each of STRESSES."""
+    module = load_case_module(case_name)
+    params = resolve_params(module, {})
+    case = build_case(module, params)
+    m, dim = case.material.params, case.dim
+    length = params["r_0"] if "r_0" in params else params["L_0"]
+    foot = m.phi_max * m.rho_s0 * params["g"] * params["a"] * length
+    rows = []
+    for p in (foot, 0.25 * foot):
+        for I in COLUMN_I:
+            mu = friction(I, m)
+            n, nu_b = rate_exponents(I, 1.0 + m.K_t * p, m, dim)
+            rows.append((p, I, mu, float(n), float(nu_b), float(compressible_bulk_friction_bound(mu, n, nu_b, dim)),
+                         [solver_bulk_friction(mu, form, stress, dim) for form, stress in STRESSES]))
+    return foot, rows
 
 
 def material_rows():
@@ -61,7 +97,19 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("runs", nargs="*")
     ap.add_argument("--materials", action="store_true")
+    ap.add_argument("--compressible", action="store_true")
     a = ap.parse_args()
+    if a.compressible:
+        for name in ("lube_collapse_2d", "lube_collapse_3d"):
+            foot, rows = column_rows(name)
+            print(f"{name} (its defaults; the foot's hydrostatic pressure {foot:.0f} Pa): bulk friction mu_b "
+                  "needed and carried")
+            print("| p [Pa] | I | mu | n | nu_b | least mu_b | "
+                  + " | ".join(f"{form}, {stress}" for form, stress in STRESSES) + " |")
+            print("|---" * (6 + len(STRESSES)) + "|")
+            for p, I, mu, n, nu_b, bound, carried in rows:
+                print(f"| {p:.0f} | {I:g} | {mu:.3f} | {n:.3f} | {nu_b:.4f} | {bound:+.3f} | "
+                      + " | ".join(f"{c:.3f} ({'well' if c >= bound else 'ill'})" for c in carried) + " |")
     if a.materials:
         print("| material (004_ Table 1) | I_0 | well-posed for | alpha | "
               + " | ".join(f"mu at I = {I:g}: 004_ / regularised" for I in LOW_I) + " |")
@@ -74,10 +122,12 @@ def main():
         window, rows, overall = run_table(run)
         where = f"well-posed for {window[0]:.3g} < I < {window[1]:.3g}" if window else "ill-posed at every I"
         print(f"{run}: mu(I) {where}")
-        print(f"{'t [s]':>8} {'dissipation [W]':>16} {'ill-posed share':>16}   I below which 1/4, 1/2, 3/4 of it")
-        for t, power, share, quartiles in rows:
-            print(f"{t:8.4f} {power:16.4g} {share:16.3f}   " + " ".join(f"{q:.3g}" for q in quartiles))
-        print(f"over the run: {overall:.3f} of the energy dissipated at ill-posed I")
+        print(f"{'t [s]':>8} {'dissipation [W]':>16} {'ill-posed share':>16} {'compressible':>13}   "
+              "I below which 1/4, 1/2, 3/4 of it")
+        for t, power, share, short, quartiles in rows:
+            print(f"{t:8.4f} {power:16.4g} {share:16.3f} {short:13.3f}   " + " ".join(f"{q:.3g}" for q in quartiles))
+        print(f"over the run: {overall[0]:.3f} of the energy dissipated at ill-posed I (incompressible), "
+              f"{overall[1]:.3f} at grains short of the compressible bound")
 
 
 if __name__ == "__main__":
