@@ -36,8 +36,9 @@ pressure, mu p (dev(k k) + (nu_b + n - 1) r D_0) / |D| from the shear term,
 r = d|D| / |D| = 1 for this wave, and the bulk term), so the equations are
 ill-posed unless mu_b >= n / 2 - mu (n + nu_b + (D - 2) / 3) / 2
 (``compressible_bulk_friction_bound``). With stiff grains (n = 2, nu_b = 0)
-this is Heyman et al.'s 1 - 7 mu / 6 in 3D and 1 - mu in 2D (their arXiv v1
-gives D times each, its bulk term on tr(D) / D); tests/test_well_posedness.py
+this is the 1 - 7 mu / 6 of Heyman et al.'s abstract in 3D and 1 - mu in 2D;
+their arXiv v1's abstract gives 3 - 7 mu / 2 and 2 - 2 mu, D times each, which
+a bulk term written on tr(D) / D gives. tests/test_compressible_well_posedness.py
 checks that no other direction of wave or of velocity needs more, by the
 eigenvalues of the linearised stress over all directions. 004_'s grains are
 softer: at fixed density Eq. 44 gives n and nu_b below 2 and nu
