@@ -69,6 +69,8 @@ def deposit(run, at=None):
     """The figures of the module docstring for one run, as a dict: at its last frame, or at the
     frame nearest the time ``at``."""
     frames = list_frames(run)
+    if not frames:
+        raise SystemExit(f"{run}: no frames (a run's output directory is expected)")
     k = len(frames) - 1 if at is None else int(np.argmin([abs(frame_time(f) - at) for f in frames]))
     first, before, last = (read_frame(frames[i]) for i in (0, max(k - 1, 0), k))
     diag = read_diagnostics(Path(run) / "diagnostics.csv")
