@@ -3,6 +3,7 @@
     .venv/bin/python scripts/well_posedness.py RUN [RUN ...]
     .venv/bin/python scripts/well_posedness.py --materials
     .venv/bin/python scripts/well_posedness.py --compressible
+    .venv/bin/python scripts/well_posedness.py --growth
 
 For each run (any mu(I) case: its material is built again from the frames' parameters): the window
 of inertial numbers (I_1, I_2) where the law is well-posed, and for each frame the grains' viscous
@@ -21,6 +22,11 @@ the regularised law's with the largest of those alphas (the nearest to 004_'s).
 foot's hydrostatic pressure and a quarter of it, against I: the rate exponents n and nu_b of the
 grains at fixed density, the least bulk friction of the compressible equations and the bulk friction
 of each of the solver's viscous stresses.
+
+--growth prints, for the same columns at 500 Pa and I = 0.003 to 0.1, the linear growth of waves in
+a uniform shear (mpisph/shear_stability.py) with each viscous stress: the rate at 1e6 1/m (its plateau
+where it levels off), the wavelength at which half of it is reached, and the rate of the shortest wave
+that the validation's spacings resolve, 2 dp.
 """
 
 import argparse
@@ -28,6 +34,7 @@ import math
 
 import numpy as np
 
+from mpisph import shear_stability
 from mpisph.case import build_case, case_of_frame, load_case_module, resolve_params
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import weighted_quantile
@@ -39,8 +46,12 @@ from mpisph.well_posedness import compressible_bulk_friction_bound, compressible
     table_1_law, well_posed_window
 
 LOW_I = (1e-2, 1e-3, 1e-4)
+GROWTH_I = (0.003, 0.01, 0.03, 0.1)
+GROWTH_P = 500.0  # Pa
+# the spacings of the validation's resolution studies: L_0 / dp and r_0 / dp
+SPACINGS = {"lube_collapse_2d": (20, 40, 80), "lube_collapse_3d": (14.5, 29.1, 43.6)}
 COLUMN_I = (1e-4, 1e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0)
-STRESSES = (("cleary", "full"), ("corrected_stress", "full"), ("cleary", "deviatoric"))
+STRESSES = (("cleary", "full"), ("corrected_stress", "full"), ("corrected_stress", "deviatoric"))
 
 
 def run_table(run):
@@ -59,6 +70,27 @@ def run_table(run):
                      compressible_ill_posed_share(f, case), quartiles))
     return window, rows, (ill_posed_energy_share(frames, window),
                           energy_share(frames, lambda f: compressible_ill_posed_share(f, case)))
+
+
+def growth_rows(case_name):
+    """A row per I of GROWTH_I and viscous stress of STRESSES at GROWTH_P for the case's default
+    column: I, the stress, the rate at 1e6 1/m, the hand-over wavelength (None without a plateau) and
+    the rates at 2 dp for the case's SPACINGS."""
+    module = load_case_module(case_name)
+    params = resolve_params(module, {})
+    case = build_case(module, params)
+    m, dim = case.material.params, case.dim
+    length = params["r_0"] if "r_0" in params else params["L_0"]
+    wavenumbers, dirs = np.logspace(0, 6, 61), shear_stability.directions(dim, 721 if dim == 2 else 2000)
+    rows = []
+    for I in GROWTH_I:
+        for form, stress in STRESSES:
+            lin = shear_stability.LinearisedShear(I, GROWTH_P, dim, m, shear_stability.bulk_part(form, stress, dim))
+            rates = shear_stability.growth_curve(lin, wavenumbers, dirs)
+            resolved = [lin.growth(math.pi * n / length, dirs).max() for n in SPACINGS[case_name]]
+            rows.append((I, f"{form}, {stress}", rates[-1], shear_stability.handover_wavelength(wavenumbers, rates),
+                         resolved))
+    return rows
 
 
 def column_rows(case_name):
@@ -98,7 +130,19 @@ def main():
     ap.add_argument("runs", nargs="*")
     ap.add_argument("--materials", action="store_true")
     ap.add_argument("--compressible", action="store_true")
+    ap.add_argument("--growth", action="store_true")
     a = ap.parse_args()
+    if a.growth:
+        for name in SPACINGS:
+            print(f"{name} (its defaults) at {GROWTH_P:g} Pa: growth rates of waves in a uniform shear [1/s]")
+            print("| I | viscous stress | rate at 1e6 1/m | half of it at a wavelength of | "
+                  + " | ".join(f"rate at 2 dp, {'L_0' if '2d' in name else 'r_0'} / dp = {n:g}" for n in SPACINGS[name])
+                  + " |")
+            print("|---" * (4 + len(SPACINGS[name])) + "|")
+            for I, stress, top, handover, resolved in growth_rows(name):
+                print(f"| {I:g} | {stress} | {top:.4g} | "
+                      + (f"{1e3 * handover:.3g} mm" if handover else "none: it grows as k^2") + " | "
+                      + " | ".join(f"{r:.4g}" for r in resolved) + " |")
     if a.compressible:
         for name in ("lube_collapse_2d", "lube_collapse_3d"):
             foot, rows = column_rows(name)
