@@ -48,6 +48,15 @@ def mpirun_python(args, ranks=1, timeout=None, root=ROOT, accept=None):
     return r
 
 
+STOPPED = "mpisph: stopped by"  # how the line of a run that a signal stopped starts (__main__.py; jobs/chain.sh)
+
+
+def stopped_by_signal(stdout):
+    """The line saying how to go on, when the output ``stdout`` is a run's that a signal stopped (its
+    exit status is 0 all the same), else None."""
+    return next((line for line in stdout.splitlines() if line.startswith(STOPPED)), None)
+
+
 def command_line(args, ranks=1):
     """``mpirun -n ranks python args`` as a user would type it, for pages and messages."""
     return " ".join(["mpirun", "-n", str(ranks), "python", *map(str, args)])

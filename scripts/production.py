@@ -32,7 +32,7 @@ from mpisph import measure, pairing, render  # noqa: E402
 from mpisph.instability import tensile_instability  # noqa: E402
 from mpisph.io.diagnostics import read_diagnostics  # noqa: E402
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
-from mpisph.launch import command_line, mpirun_mpisph  # noqa: E402
+from mpisph.launch import command_line, mpirun_mpisph, stopped_by_signal  # noqa: E402
 from mpisph.particles import MOVING  # noqa: E402
 from mpisph.soil import drucker_prager  # noqa: E402
 
@@ -64,6 +64,9 @@ def run(case, args, ranks, reuse, name=None):
             earlier.unlink(missing_ok=True)
         r = mpirun_mpisph([case, *args, "--out", out], ranks=ranks, accept=(0, 3))
         log.write_text(r.stdout + r.stderr)
+        stopped = stopped_by_signal(r.stdout)
+        if stopped:  # not finished: no stamp, so that --reuse does not read it as a finished run
+            raise SystemExit(f"{case} {' '.join(map(str, args))}: {stopped}")
         if stamp["code"] is not None:
             (out / STAMP).write_text(json.dumps(stamp))
     text = log.read_text()

@@ -18,7 +18,7 @@ import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import check_frame, list_frames, read_frame
-from mpisph.launch import MPI_ENV, ROOT
+from mpisph.launch import MPI_ENV, ROOT, stopped_by_signal
 from mpirun import mpisph, signal_when_running
 
 pytestmark = pytest.mark.ranks  # tests/conftest.py
@@ -49,6 +49,7 @@ def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
     m = re.fullmatch(rf"mpisph: stopped by {name} at step (\d+), t = (\S+) s; frame (\S+) written; continue with: "
                      rf"mpirun -n \d python -m mpisph dam_break_2d --restart (\S+) --out (\S+)", line)
     assert m, line
+    assert stopped_by_signal(stdout) == line  # how scripts/validation/runs.py tells a stopped run
     assert re.search(r"^memory: largest rank [\d.e+-]+ GB at start-up, [\d.e+-]+ GB at the peak; above the "
                      r"interpreter and libraries \d+ and \d+ bytes per owned particle$", stdout, re.M), stdout
     frame = m.group(3)
@@ -59,7 +60,7 @@ def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
     # the restart goes on from the frame's time (a little further, to keep the test short)
     t_end = state["t"] + 0.01
     r = mpisph(["dam_break_2d", "--restart", frame, "--t-end", repr(t_end), "--out", out, "--quiet"], ranks=1)
-    assert r.returncode == 0, r.stderr
+    assert r.returncode == 0 and stopped_by_signal(r.stdout) is None, r.stderr
     last = read_frame(list_frames(out)[-1])
     assert last["t"] == pytest.approx(t_end) and last["step"] > state["step"]
     diag = read_diagnostics(out / "diagnostics.csv")

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.launch import command_line, mpirun_mpisph
+from mpisph.launch import command_line, mpirun_mpisph, stopped_by_signal
 
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -67,8 +67,11 @@ def run(name, case, args, ranks, blow_up_ok=False):
         if stamp["code"] is not None:
             out.mkdir(parents=True, exist_ok=True)
             started.write_text(json.dumps(stamp))
-        returncode = mpirun_mpisph([case, *args, *restart, "--out", out, "--quiet"], ranks=ranks,
-                                   accept=(0, 3) if blow_up_ok else (0,)).returncode
+        r = mpirun_mpisph([case, *args, *restart, "--out", out, "--quiet"], ranks=ranks,
+                          accept=(0, 3) if blow_up_ok else (0,))
+        returncode, stopped = r.returncode, stopped_by_signal(r.stdout)
+        if stopped:  # not finished: its partial stamp stays, so that --reuse continues it
+            raise SystemExit(f"{case} {' '.join(args)}: {stopped}; run validate.py again with --reuse to go on")
         if stamp["code"] is not None:
             done.write_text(json.dumps(dict(stamp, returncode=returncode)))
             started.unlink()
