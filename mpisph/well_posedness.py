@@ -46,10 +46,10 @@ softer: at fixed density Eq. 44 gives n and nu_b below 2 and nu
 -mu / 6 in 3D and 0 in 2D. The solver's viscous stresses carry the bulk
 frictions of ``solver_bulk_friction``. This is the limit of short waves
 only: longer waves, for which the grains are as good as incompressible, obey
-the incompressible criterion above; where the one hands over to the other
-(about where the sound speed times the wavenumber meets the kinematic
-viscosity times its square) is not computed here. These functions tell in
-which range of I a flow runs, not how the discrete scheme behaves.
+the incompressible criterion above; where the one hands over to the other,
+and how fast the waves grow on either side, is mpisph/shear_stability.py's.
+These functions tell in which range of I a flow runs, not how the discrete
+scheme behaves.
 
 partially_regularised_friction is Barker & Gray 2017's remedy below the window, kept to measure
 what it would do to a material (scripts/well_posedness.py --materials, docs/COLLAPSES.md); the
