@@ -7,7 +7,8 @@ pressure p: grain density x = 1 + K_t p, volume fraction phi(I) (004_ Eq. 8), bu
 phi x rho_s0, gamma_dot_0 = I sqrt(p / rho_s) / d. The law gives p = P(rho, gamma_dot) and mu =
 M(rho, gamma_dot) through the solver's grain density (mu_i_law.grain_density_ratio, Eq. 44), whose
 partial derivatives are taken by central differences. The stress -p I + 2 eta S(eps), eta = mu p /
-gamma_dot, S(e) = dev(e) + c_b tr(e) I with the bulk part c_b of the viscous stress (``bulk_part``),
+gamma_dot, S(e) = dev(e) + c_b tr(e) I with the bulk part c_b of the viscous stress
+(well_posedness.bulk_part),
 linearised about the base state:
 
     sigma' = -(P_g g' + P_rho rho') I + 2 eps_0 (eta_g g' + eta_rho rho') + 2 eta_0 S(eps'),
@@ -29,15 +30,6 @@ import numpy as np
 from .physics.mu_i_law import friction, grain_density_ratio, inertial_number
 
 STEP = 1e-6  # relative step of the central differences of P and M
-
-
-def bulk_part(viscous_form, viscous_stress, dim):
-    """c_b of S(e) = dev(e) + c_b tr(e) I for the solver's viscous stress (physics/mu_i.py): Eq. 27's
-    pair term, eta (lap v + 2 grad div v), (1 + 2 / D) / 2; the corrected full stress 2 eta eps, 1 / D;
-    the deviatoric stress and the deviatoric pair term, 0."""
-    if viscous_stress == "deviatoric":
-        return 0.0
-    return 0.5 * (1.0 + 2.0 / dim) if viscous_form == "cleary" else 1.0 / dim
 
 
 def shear_state(I, p, dim, m):

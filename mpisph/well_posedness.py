@@ -180,13 +180,18 @@ def friction_exponent(I, m):
     return I * (m.mu_2 - m.mu_s) * m.I_0 / (I + m.I_s + m.I_0) ** 2 / friction(I, m)
 
 
-def solver_bulk_friction(mu, viscous_form, viscous_stress, dim):
-    """The bulk friction mu_b = xi mu / (2 eta) of the solver's viscous stress, xi its bulk viscosity
-    (physics/mu_i.py): Eq. 27's pair term (1 + 2 / D) eta, the corrected full stress 2 eta eps's
-    2 eta / D, the deviatoric stress and the deviatoric pair term none."""
+def bulk_part(viscous_form, viscous_stress, dim):
+    """c_b of the solver's viscous stress 2 eta (dev(eps) + c_b tr(eps) I) (physics/mu_i.py), its bulk
+    viscosity over 2 eta: Eq. 27's pair term, eta (lap v + 2 grad div v), (1 + 2 / D) / 2; the
+    corrected full stress 2 eta eps, 1 / D; the deviatoric stress and the deviatoric pair term, 0."""
     if viscous_stress == "deviatoric":
-        return 0.0 * mu
-    return mu * (dim + 2.0) / (2.0 * dim) if viscous_form == "cleary" else mu / dim
+        return 0.0
+    return 0.5 * (1.0 + 2.0 / dim) if viscous_form == "cleary" else 1.0 / dim
+
+
+def solver_bulk_friction(mu, viscous_form, viscous_stress, dim):
+    """The bulk friction mu_b = xi mu / (2 eta) = c_b mu of the solver's viscous stress (bulk_part)."""
+    return bulk_part(viscous_form, viscous_stress, dim) * mu
 
 
 def compressible_ill_posed_share(frame, case):

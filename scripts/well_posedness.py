@@ -40,7 +40,7 @@ from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import weighted_quantile
 from mpisph.physics.mu_i_law import friction
 from mpisph.references import MU_I_MATERIALS
-from mpisph.well_posedness import compressible_bulk_friction_bound, compressible_ill_posed_share, \
+from mpisph.well_posedness import bulk_part, compressible_bulk_friction_bound, compressible_ill_posed_share, \
     dissipation_rate, energy_share, ill_posed_dissipation_share, ill_posed_energy_share, \
     partial_regularisation_alphas, partially_regularised_friction, rate_exponents, solver_bulk_friction, \
     table_1_law, well_posed_window
@@ -72,20 +72,24 @@ def run_table(run):
                           energy_share(frames, lambda f: compressible_ill_posed_share(f, case)))
 
 
+def default_column(case_name):
+    """(parameters, law, dimension, column length or radius) of the case's default column."""
+    module = load_case_module(case_name)
+    params = resolve_params(module, {})
+    case = build_case(module, params)
+    return params, case.material.params, case.dim, params["r_0"] if "r_0" in params else params["L_0"]
+
+
 def growth_rows(case_name):
     """A row per I of GROWTH_I and viscous stress of STRESSES at GROWTH_P for the case's default
     column: I, the stress, the rate at 1e6 1/m, the hand-over wavelength (None without a plateau) and
     the rates at 2 dp for the case's SPACINGS."""
-    module = load_case_module(case_name)
-    params = resolve_params(module, {})
-    case = build_case(module, params)
-    m, dim = case.material.params, case.dim
-    length = params["r_0"] if "r_0" in params else params["L_0"]
+    params, m, dim, length = default_column(case_name)
     wavenumbers, dirs = np.logspace(0, 6, 61), shear_stability.directions(dim, 721 if dim == 2 else 2000)
     rows = []
     for I in GROWTH_I:
         for form, stress in STRESSES:
-            lin = shear_stability.LinearisedShear(I, GROWTH_P, dim, m, shear_stability.bulk_part(form, stress, dim))
+            lin = shear_stability.LinearisedShear(I, GROWTH_P, dim, m, bulk_part(form, stress, dim))
             rates = shear_stability.growth_curve(lin, wavenumbers, dirs)
             resolved = [lin.growth(math.pi * n / length, dirs).max() for n in SPACINGS[case_name]]
             rows.append((I, f"{form}, {stress}", rates[-1], shear_stability.handover_wavelength(wavenumbers, rates),
@@ -97,11 +101,7 @@ def column_rows(case_name):
     """For the case's default column: (its foot's hydrostatic pressure, rows), a row per pressure (the
     foot's and a quarter of it) and I of COLUMN_I: p, I, mu, n, nu_b, the compressible bound and the
     bulk friction of each of STRESSES."""
-    module = load_case_module(case_name)
-    params = resolve_params(module, {})
-    case = build_case(module, params)
-    m, dim = case.material.params, case.dim
-    length = params["r_0"] if "r_0" in params else params["L_0"]
+    params, m, dim, length = default_column(case_name)
     foot = m.phi_max * m.rho_s0 * params["g"] * params["a"] * length
     rows = []
     for p in (foot, 0.25 * foot):

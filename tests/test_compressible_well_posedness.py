@@ -13,6 +13,7 @@ from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.particles import MOVING
 from mpisph.physics.mu_i import pair_term_factors
 from mpisph.physics.mu_i_law import friction, grain_density_ratio, inertial_number
+from mpisph.shear_stability import shear_state
 from mpisph.well_posedness import compressible_bulk_friction_bound, compressible_ill_posed_share, \
     rate_exponents, solver_bulk_friction
 
@@ -78,9 +79,7 @@ def test_rate_exponents_match_the_grain_density_of_the_solver(dim, I, p):
     """n and nu_b from the closed form against d ln p, d ln mu over d ln gamma_dot at fixed bulk
     density, by central differences of mu_i_law.grain_density_ratio, the root the solver takes."""
     m = sand(dim).material.params
-    x = 1.0 + m.K_t * p
-    rho = (m.phi_max - (m.phi_max - m.phi_min) * I) * x * m.rho_s0
-    gamma_dot = I * math.sqrt(p / (x * m.rho_s0)) / (m.d0 * x ** (-1.0 / dim))
+    rho, gamma_dot, x = shear_state(I, p, dim, m)
     assert grain_density_ratio(rho, gamma_dot, x, dim, m) == pytest.approx(x, rel=1e-12)
 
     def state(log_rate):

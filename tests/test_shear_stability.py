@@ -10,9 +10,8 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.physics.mu_i_law import friction
-from mpisph.shear_stability import LinearisedShear, bulk_part, directions, growth_curve, handover_wavelength, \
-    shear_state
-from mpisph.well_posedness import compressible_bulk_friction_bound, ill_posedness, rate_exponents
+from mpisph.shear_stability import LinearisedShear, directions, growth_curve, handover_wavelength, shear_state
+from mpisph.well_posedness import bulk_part, compressible_bulk_friction_bound, ill_posedness, rate_exponents
 
 STRESSES = [("cleary", "full"), ("corrected_stress", "full"), ("corrected_stress", "deviatoric")]
 
