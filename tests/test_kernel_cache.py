@@ -1,5 +1,6 @@
 """The compiled kernels are cached per content of the package's sources (mpisph/__init__.py), so a
-kernel never keeps the old code of a kernel it calls from another file (numba/numba#1833)."""
+kernel never keeps the old code of a kernel it calls from another file (numba/numba#1833); old
+cache folders are pruned."""
 
 import os
 import shutil
@@ -8,6 +9,7 @@ import sys
 from pathlib import Path
 
 import mpisph
+from mpisph import prune_kernel_caches
 
 PACKAGE = Path(mpisph.__file__).resolve().parent
 
@@ -30,3 +32,20 @@ def test_a_change_to_any_source_file_starts_a_new_kernel_cache(tmp_path):
     edited = cache_dir(tmp_path)
     assert edited != first and edited.parent == first.parent
     assert cache_dir(tmp_path, NUMBA_CACHE_DIR=str(tmp_path / "node")) == tmp_path / "node" / edited.name
+
+
+def test_prune_keeps_the_current_and_the_most_recently_used(tmp_path):
+    folders = [tmp_path / f"kernels-{i:016x}" for i in range(6)]
+    for age, folder in enumerate(folders):
+        folder.mkdir()
+        (folder / "index.nbi").write_bytes(b"")
+        os.utime(folder, (1e9 - 100 * age, 1e9 - 100 * age))  # folders[0] the newest
+    (tmp_path / "other").mkdir()
+    current = folders[5]  # the oldest, but in use
+    prune_kernel_caches(current, kept=2)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["other", folders[0].name, folders[1].name, current.name])
+    assert current.stat().st_mtime > folders[0].stat().st_mtime  # marked as used
+    prune_kernel_caches(current, kept=2)  # nothing more to delete
+    assert folders[0].exists() and folders[1].exists()
+    prune_kernel_caches(tmp_path / "kernels-not-compiled-yet", kept=0)  # a folder not made yet is no error
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other"]
