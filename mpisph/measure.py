@@ -184,6 +184,16 @@ def weighted_quantile(values, weights, share):
     return float(values[order][np.searchsorted(cumulative, share * cumulative[-1])])
 
 
+def planar_runout_fits(a, ratio):
+    """Lube et al.'s (2005) two fits of planar runout ratios ``ratio`` at aspect ratios ``a``: the
+    slope through the origin of the columns a <= 1 (1.2 for their sand) and the exponent of a power
+    law through those a >= 4 (2/3)."""
+    a, ratio = np.asarray(a, dtype=float), np.asarray(ratio, dtype=float)
+    low, high = a <= 1.0, a >= 4.0
+    slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
+    return slope, float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
+
+
 AT_REST = 1e-3  # edge_rest_ratio at or below which a deposit is at rest (004_ Sec. 5.2: three orders of magnitude)
 
 

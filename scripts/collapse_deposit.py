@@ -22,7 +22,10 @@ against time: whether the runout and the centre's height still change once the c
 With ``--ensemble`` it also prints, for the runs of each shape, a and r_0 / dp (for example the same
 column run with frames at other times, hence other sequences of time steps), the mean runout
 ratio and 95 and 99 % mass extents with their least and greatest, and how many of the runs' edges
-move faster than 1e-3 of the peak front speed at the end.
+move faster than 1e-3 of the peak front speed at the end; and, for the planar runs of each length /
+dp that include columns a <= 1 and two a >= 4, Lube et al.'s (2005) fits of those means
+(measure.planar_runout_fits: the low-a slope through the origin, 1.2 for their sand, and the
+high-a exponent, 2/3).
 
 With ``--profile STEP`` it also prints, for all the runs side by side, the deposit's surface height over
 r_0 at every STEP r_0 from STEP to the farthest grain (0 where no grain lies within dp of the station),
@@ -109,9 +112,11 @@ def profile_table(deposits, step):
 
 def ensemble_table(deposits):
     """Lines of the ``--ensemble`` summary (module docstring) of ``deposits`` (dicts of ``deposit``),
-    a line for each shape (planar first), a and r_0 / dp, sorted by the three."""
-    groups = {}
+    a line for each shape (planar first), a and r_0 / dp, sorted by the three, then the planar fits of
+    each spacing that allows them."""
+    groups, means = {}, {}
     for d in deposits:
+        means.setdefault((d["radial"], round(d["resolution"], 1)), {})
         groups.setdefault((d["radial"], d["a"], round(d["resolution"], 1)), []).append(d)
     lines = ["shape a length/dp runs: runout ratio, 95 % and 99 % of the mass within, as mean (least-greatest); "
              "runs whose edge moves at the end"]
@@ -122,6 +127,15 @@ def ensemble_table(deposits):
         lines.append(f"{'axisymmetric' if radial else 'planar'} {a:g} {resolution:g} {len(runs)}: "
                      + "; ".join(f"{np.mean(c):.3f} ({min(c):.3f}-{max(c):.3f})" for c in columns)
                      + f"; {moving} of {len(runs)}")
+        means[radial, resolution][a] = [np.mean(c) for c in columns]
+    for (radial, resolution), by_a in sorted(means.items()):
+        a = np.array(sorted(by_a))
+        if radial or not (np.any(a <= 1.0) and np.sum(a >= 4.0) >= 2):
+            continue
+        fits = [measure.planar_runout_fits(a, [by_a[x][k] for x in a]) for k in range(3)]
+        lines.append(f"planar fits at L_0 / dp = {resolution:g} (a = " + ", ".join(f"{x:g}" for x in a)
+                     + "): low-a slope and high-a exponent of the runout ratio"
+                     + "; of 95 % and of 99 % of the mass: " + "; ".join(f"{s:.3f} {e:.3f}" for s, e in fits))
     return lines
 
 

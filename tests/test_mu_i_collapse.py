@@ -345,6 +345,24 @@ def test_the_deposit_script_averages_the_runs_of_each_spacing():
                          "axisymmetric 0.5 20 1: 0.300 (0.300-0.300); 0.100 (0.100-0.100); 0.200 (0.200-0.200); 0 of 1"]
 
 
+
+def test_the_deposit_script_fits_the_planar_means_of_each_spacing():
+    """collapse_deposit.ensemble_table ends with Lube et al.'s two fits of the planar means at each
+    spacing that has columns a <= 1 and two a >= 4: 1.2 and 2/3 for runouts on their laws (and
+    extents at fixed fractions of them); not at a spacing without them, nor for the cylinders."""
+    ensemble_table = load_script("collapse_deposit").ensemble_table
+
+    def run(a, resolution, radial=False):
+        ratio = 1.2 * a if a <= 1.0 else 1.9 * a ** (2 / 3)
+        return {"radial": radial, "a": a, "resolution": resolution, "ratio": ratio, "rest": 0.0,
+                "extents": [0.5 * ratio, 0.6 * ratio, 0.8 * ratio]}
+
+    runs = [run(a, 80.0) for a in (6.0, 0.5, 2.0, 1.0, 4.0)] + [run(a, 40.0) for a in (0.5, 1.0, 4.0)]
+    lines = ensemble_table(runs + [run(a, 80.0, radial=True) for a in (0.5, 4.0, 6.0)])
+    assert lines[-1] == ("planar fits at L_0 / dp = 80 (a = 0.5, 1, 2, 4, 6): low-a slope and high-a exponent of "
+                         "the runout ratio; of 95 % and of 99 % of the mass: 1.200 0.667; 0.720 0.667; 0.960 0.667")
+    assert sum(line.startswith("planar fits") for line in lines) == 1
+
 def test_the_well_posedness_script_reads_the_planar_column(planar):
     """scripts/well_posedness.py on the coarse planar column: the sand's window (0.432 < I < 1.82),
     nothing dissipated at rest at t = 0, and at 0.1 s, as the column fails, more than nine tenths of

@@ -143,20 +143,12 @@ SLOPE, EXPONENT = (1.2, 0.25), (0.67, 0.1)  # issue 14: the planar runouts' low-
 STEP_SEQUENCES = (20, 17, 18, 19, 21, 22)
 
 
-def _slope_and_exponent(a, ratio):
-    """The slope through the origin of the runout ratios ``ratio`` of the columns a <= 1 and the
-    exponent of those a >= 4."""
-    low, high = a <= 1.0, a >= 4.0
-    slope = float(np.sum(a[low] * ratio[low]) / np.sum(a[low] ** 2))
-    return slope, float(np.polyfit(np.log(a[high]), np.log(ratio[high]), 1)[0])
-
-
 def _planar_fits(a, ratio, label=""):
     """(exponent, rows) of planar runout ratios ``ratio`` at aspect ratios ``a``, one sequence of
     time steps: the slope of the columns a <= 1 through the origin and the exponent of those a >= 4,
     beside issue 14's values (asserted over the step sequences, ``_fit_spread``); ``label`` starts
     the rows' names."""
-    slope, exponent = _slope_and_exponent(a, ratio)
+    slope, exponent = measure.planar_runout_fits(a, ratio)
     return exponent, [(f"{label}low-a slope (a = 0.5, 1; through the origin)", f"{slope:.2f}", f"{SLOPE[0]:g}",
                        f"{slope - SLOPE[0]:+.2f}", "-"),
                       (f"{label}high-a exponent (a = 4, 6)", f"{exponent:.2f}", f"{EXPONENT[0]:g}",
@@ -172,7 +164,7 @@ def _fit_spread(label, variant, runs, L0, dp, ranks):
         members = runs if n_frames == STEP_SEQUENCES[0] else [
             collapse("lube_collapse_2d", a, L0, dp, ranks, radial=False, variant=variant, n_frames=n_frames)
             for a in (0.5, 1.0, 4.0, 6.0)]
-        fits.append(_slope_and_exponent(np.array([r["a"] for r in members]), np.array([r["ratio"] for r in members])))
+        fits.append(measure.planar_runout_fits([r["a"] for r in members], [r["ratio"] for r in members]))
     rows = []
     sequences = ", ".join(f"{n}" for n in STEP_SEQUENCES)
     for name, values, (ref, tolerance) in (("low-a slope", [f[0] for f in fits], SLOPE),
