@@ -5,8 +5,8 @@ from another file does (numba/numba#1833): the caller keeps the callee's old cod
 So the kernels are cached in a folder named for the content of every source file of the package,
 under NUMBA_CACHE_DIR if set, else in the package's __pycache__: any change of the sources (a pull,
 an edit) starts a new folder and recompiles everything once. Beside the folder in use, the
-KEPT_CACHES most recently used of the others are kept (a worktree or a checkout switched back
-and forth finds its kernels) and older ones are deleted at import.
+KEPT_CACHES most recently used of the others are kept (a checkout switched back and forth, or
+checkouts sharing NUMBA_CACHE_DIR, find their kernels) and older ones are deleted at import.
 """
 
 import hashlib
@@ -21,8 +21,9 @@ __version__ = "0.1.0"
 KEPT_CACHES = 3
 
 
-def kernel_cache_dir(package=Path(__file__).resolve().parent):
-    """The folder of the compiled kernels for the sources of ``package`` as they are (module docstring)."""
+def kernel_cache_dir():
+    """The folder of the compiled kernels for the sources as they are (module docstring)."""
+    package = Path(__file__).resolve().parent
     digest = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         digest.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")

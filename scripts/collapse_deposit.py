@@ -116,7 +116,6 @@ def ensemble_table(deposits):
     each spacing that allows them."""
     groups, means = {}, {}
     for d in deposits:
-        means.setdefault((d["radial"], round(d["resolution"], 1)), {})
         groups.setdefault((d["radial"], d["a"], round(d["resolution"], 1)), []).append(d)
     lines = ["shape a length/dp runs: runout ratio, 95 % and 99 % of the mass within, as mean (least-greatest); "
              "runs whose edge moves at the end"]
@@ -127,7 +126,7 @@ def ensemble_table(deposits):
         lines.append(f"{'axisymmetric' if radial else 'planar'} {a:g} {resolution:g} {len(runs)}: "
                      + "; ".join(f"{np.mean(c):.3f} ({min(c):.3f}-{max(c):.3f})" for c in columns)
                      + f"; {moving} of {len(runs)}")
-        means[radial, resolution][a] = [np.mean(c) for c in columns]
+        means.setdefault((radial, resolution), {})[a] = [np.mean(c) for c in columns]
     for (radial, resolution), by_a in sorted(means.items()):
         a = np.array(sorted(by_a))
         if radial or not (np.any(a <= 1.0) and np.sum(a >= 4.0) >= 2):

@@ -345,7 +345,6 @@ def test_the_deposit_script_averages_the_runs_of_each_spacing():
                          "axisymmetric 0.5 20 1: 0.300 (0.300-0.300); 0.100 (0.100-0.100); 0.200 (0.200-0.200); 0 of 1"]
 
 
-
 def test_the_deposit_script_fits_the_planar_means_of_each_spacing():
     """collapse_deposit.ensemble_table ends with Lube et al.'s two fits of the planar means at each
     spacing that has columns a <= 1 and two a >= 4: 1.2 and 2/3 for runouts on their laws (and
@@ -362,6 +361,7 @@ def test_the_deposit_script_fits_the_planar_means_of_each_spacing():
     assert lines[-1] == ("planar fits at L_0 / dp = 80 (a = 0.5, 1, 2, 4, 6): low-a slope and high-a exponent of "
                          "the runout ratio; of 95 % and of 99 % of the mass: 1.200 0.667; 0.720 0.667; 0.960 0.667")
     assert sum(line.startswith("planar fits") for line in lines) == 1
+
 
 def test_the_well_posedness_script_reads_the_planar_column(planar):
     """scripts/well_posedness.py on the coarse planar column: the sand's window (0.432 < I < 1.82),
