@@ -32,6 +32,7 @@ VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remed
                "inclined_plane": incline.inclined_plane, "inclined_plane_steady": incline.inclined_plane_steady,
                "inclined_plane_deep": incline.inclined_plane_deep,
                "lube_collapse_2d": lube_planar.lube_collapse_2d,
+               "lube_collapse_2d_convergence": lube_planar.lube_collapse_2d_convergence,
                "lube_collapse_3d": lube_axisymmetric.lube_collapse_3d,
                "lube_collapse_3d_convergence": lube_axisymmetric.lube_collapse_3d_convergence,
                "lube_collapse_3d_convergence_well_posed": lube_axisymmetric.lube_collapse_3d_convergence_well_posed}
