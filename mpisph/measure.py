@@ -2,6 +2,7 @@
 
 import numpy as np
 
+from .neighbours import neighbour_lists
 from .particles import MOVING
 
 
@@ -306,3 +307,21 @@ def final_over_peak(speeds):
 def final_over_peak_speed(frames):
     """``final_over_peak`` of the ``max_speed`` of each of ``frames``."""
     return final_over_peak([max_speed(f) for f in frames])
+
+
+def jostle_pressure(frame, kernel):
+    """rho |v - <v>|^2 / D of each particle of ``frame`` (its moving particles, no periodic images):
+    the momentum flux, as a pressure, of its velocity's departure from the kernel mean
+    <v> = sum_j V_j W_ij v_j / sum_j V_j W_ij over itself and its neighbours, which follows a velocity
+    that is smooth on the kernel's scale. In a shear it is the particles' jostle as they ride over each
+    other (docs/INCLINE.md, 'The particles' jostle')."""
+    x, v, volume = frame["x"], frame["v"], frame["mass"] / frame["rho"]
+    n, dim = x.shape
+    start, index = neighbour_lists(x, frame["gid"], frame["kind"], n, kernel.support, x.min(axis=0) - kernel.support)
+    i = np.repeat(np.arange(n), np.diff(start))
+    weight = volume[index] * kernel.value(np.linalg.norm(x[i] - x[index], axis=1))
+    self_weight = volume * kernel.value(np.zeros(n))
+    total = self_weight + np.bincount(i, weight, minlength=n)
+    mean = np.stack([(self_weight * v[:, c] + np.bincount(i, weight * v[index, c], minlength=n)) / total
+                     for c in range(dim)], axis=1)
+    return frame["rho"] * ((v - mean) ** 2).sum(axis=1) / dim

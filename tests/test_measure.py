@@ -185,3 +185,25 @@ def test_thrust_ratio_of_a_stress_state_at_rest():
     stress[:, 0] = 0.4 * stress[:, 1]
     frame = {"x": np.zeros((n, 2)), "stress": stress, "mass": rng.uniform(1, 2, n), "rho": np.full(n, 2000.0)}
     assert measure.thrust_ratio(frame) == pytest.approx(0.4, rel=1e-12)
+
+
+def test_jostle_pressure_is_nil_for_a_shear_and_follows_a_checkerboards_square():
+    """On a 30 x 30 lattice, away from its edges: a linear shear v_x = 5 y averages to each particle's
+    own velocity (no jostle, to round-off); a checkerboard v_y = +-a on top of it departs from its
+    kernel mean by a (1 - m), m = sum W s_j / sum W over the particle and its neighbours, summed here
+    offset by offset, so rho |v'|^2 / 2 = rho a^2 (1 - m)^2 / 2."""
+    x = lattice(30, 30)
+    ij = np.rint(x / DP - 0.5).astype(int)
+    sign = np.where((ij[:, 0] + ij[:, 1]) % 2 == 0, 1.0, -1.0)
+    kernel = Kernel("wendland_c2", 1.3 * DP, 2)
+    inner = np.all((ij >= 4) & (ij <= 25), axis=1)
+    a = 0.02
+    frame = {"x": x, "v": np.stack([5.0 * x[:, 1], a * sign], axis=1), "mass": np.full(len(x), 2.0 * DP * DP),
+             "rho": np.full(len(x), 2.0), "gid": np.arange(len(x)), "kind": np.full(len(x), MOVING, np.int8)}
+    offsets = np.array([(p, q) for p in range(-3, 4) for q in range(-3, 4)])
+    w = kernel.value(np.hypot(*offsets.T) * DP)
+    m = np.sum(w * np.where(offsets.sum(axis=1) % 2 == 0, 1.0, -1.0)) / np.sum(w)
+    got = measure.jostle_pressure(frame, kernel)[inner]
+    np.testing.assert_allclose(got, 2.0 * a * a * (1.0 - m) ** 2 / 2.0, rtol=1e-10)
+    frame["v"][:, 1] = 0.0
+    assert np.max(measure.jostle_pressure(frame, kernel)[inner]) < 1e-24
