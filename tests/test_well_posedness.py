@@ -1,7 +1,8 @@
 """Where the mu(I) friction law is well-posed (mpisph/well_posedness.py: Barker et al. 2015, in the
 form of Barker & Gray 2017, Eq. 3.9): rate-independent friction is ill-posed, 004_'s materials are
 well-posed in a window of I that scales with I_0, the glass beads' uniform incline flows inside its
-window and Lube's sand columns below theirs; the share of a frame's dissipation outside the window."""
+window and Lube's sand columns below theirs; the share of a frame's dissipation outside the window; and
+the mu(I) scheme's start-up lines on the window and on the particles' jostle."""
 
 import math
 
@@ -10,6 +11,7 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
+from mpisph.physics.mu_i import JOSTLE_STRESS, jostle_inertial_number
 from mpisph.physics.mu_i_law import friction
 from mpisph.well_posedness import criterion, ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
     partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
@@ -146,3 +148,16 @@ def test_the_mu_i_start_up_report_names_the_window():
     p = resolve_params(module, {"dp": "0.02"})
     lines = make_parts(build_case(module, p), p).scheme.report()
     assert any("well-posed only for 0.432 < I < 1.82" in line for line in lines)
+
+
+def test_the_mu_i_start_up_report_says_where_the_particles_jostle_carries_a_stress():
+    """dp / d of the incline's defaults is 10; the inertial numbers the line gives put the jostle's
+    stress, JOSTLE_STRESS (I dp / d)^2, at 1 % and 10 % of the pressure."""
+    module = load_case_module("inclined_plane")
+    p = resolve_params(module, {})
+    lines = make_parts(build_case(module, p), p).scheme.report()
+    assert any("dp / d = 10 grains wide" in line and "1 % at I = 0.029, 10 % at I = 0.091" in line
+               for line in lines)
+    for share in (0.01, 0.1):
+        I = jostle_inertial_number(share, 10.0)
+        assert JOSTLE_STRESS * (I * 10.0) ** 2 == pytest.approx(share, rel=1e-12)

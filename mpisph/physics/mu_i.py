@@ -343,6 +343,19 @@ def pair_term_factors(dim, deviatoric):
     return 2.0 * (dim + 2), 1.0, 0.0
 
 
+# The momentum the particles' velocity fluctuations carry across a sheared layer, rho <v'v'> normal to
+# it, over the pressure, per (I dp / d)^2: the particles ride over each other at about half of gamma_dot dp
+# whatever the grain size d, so they add the collisional stress of grains dp large to the law's of grains
+# d. Measured on uniform incline flows at dp / d = 1, 2 and 4 (0.113-0.119; docs/INCLINE.md).
+JOSTLE_STRESS = 0.12
+
+
+def jostle_inertial_number(share, grains):
+    """The inertial number at which the particles' jostle carries ``share`` of the pressure (JOSTLE_STRESS)
+    where they are ``grains`` = dp / d grains wide."""
+    return math.sqrt(share / JOSTLE_STRESS) / grains
+
+
 class GranularMomentum(ForceTerm):
     """Pressure, artificial viscosity and mu(I) viscosity in one pair sum (module docstring)."""
 
@@ -438,7 +451,7 @@ class MuIScheme(MorrisWalls, Scheme):
         self.deviatoric_rate = law_strain_rate == "deviatoric_kernel_mean"
         self.uses_B = self.corrected or self.isotropic or self.carried
         self.viscous_factor, self.radial, self.along = pair_term_factors(case.dim, self.deviatoric_stress)
-        self.h = kernel.h
+        self.h, self.dp = kernel.h, case.dp
         self.params = self.material.params
         require_wall_distances(case, self.name)
         self.fields = (
@@ -534,10 +547,15 @@ class MuIScheme(MorrisWalls, Scheme):
         m = self.material
         window = well_posed_window(m.params)
         where = f"only for {window[0]:.3g} < I < {window[1]:.3g}" if window else "at no I"
+        grains = self.dp / m.params.d0
         return (f"mu(I): sound speed at rest c0 = {m.c0:.4g} m/s; regularised viscosity at tau_y = tau_0 = "
                 f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",
                 f"mu(I): the friction law is well-posed {where} (Barker et al. 2015, incompressible); a flow "
-                "outside that range need not converge with the resolution (mpisph/well_posedness.py)")
+                "outside that range need not converge with the resolution (mpisph/well_posedness.py)",
+                f"mu(I): the particles are dp / d = {grains:.3g} grains wide; sheared, their jostle carries about "
+                f"{JOSTLE_STRESS:g} (I dp / d)^2 of the pressure, a stress outside the law: 1 % at I = "
+                f"{jostle_inertial_number(0.01, grains):.2g}, 10 % at I = {jostle_inertial_number(0.1, grains):.2g} "
+                "(docs/INCLINE.md)")
 
     def closing_report(self):
         return (self.implicit_viscosity.summary(),) if self.implicit else ()
