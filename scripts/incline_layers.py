@@ -86,7 +86,9 @@ def noise_table(frames, p, material):
     """Rows (height, then over the layer's mean shear rate 2 eps_xy: the rms of the particles' volumetric
     rate tr(eps) and of eps_xx - eps_yy; the alignment of the particles' own strain rates, 2 eps_xy over
     the mean modulus of eps and of its deviator; the scatter of the law's pressure P = s p over its
-    layer mean; the layer's mean shear stress of the law mu(I) P, I = gamma_dot d / sqrt(P / rho_s0),
+    layer mean, and its median over that mean (how few particles carry it); the rms of the particles'
+    velocity normal to the slope over the layer's shear rate times dp (their jostle as the layers slide
+    over each other); the layer's mean shear stress of the law mu(I) P, I = gamma_dot d / sqrt(P / rho_s0),
     over that of the layer's mean P and gamma_dot; the layer's mean viscous shear stress 2 eta eps_xy over
     its mean mu(I) P of the law's own I and P, the alignment the law's stress has in effect) averaged over
     ``frames``: the noise the law's inputs carry and what it costs (physics/mu_i.py, options
@@ -105,15 +107,16 @@ def noise_table(frames, p, material):
         tau = friction.py_func(gamma_dot * m.d0 / np.sqrt(np.maximum(P, 1e-300) / m.rho_s0), m) * P
         return lambda s, index: (f["x"][s, 1].mean(), shear[s].mean(), np.mean(trace[s] ** 2),
                                  np.mean(normal_difference[s] ** 2), full[s].mean(), deviatoric[s].mean(),
-                                 P[s].mean(), P[s].var(), tau[s].mean(), gamma_dot[s].mean(),
+                                 P[s].mean(), P[s].var(), np.median(P[s]), np.mean(f["v"][s, 1] ** 2),
+                                 tau[s].mean(), gamma_dot[s].mean(),
                                  np.mean(2.0 * f["eta"][s] * eps[s, 2]), np.mean(f["friction"][s] * law_P[s]))
 
     rows = []
-    for y, rate, trace2, difference2, full, deviatoric, P, P_var, tau, gamma_dot, stress, law in per_layer(
-            frames, dp, of_frame):
+    for (y, rate, trace2, difference2, full, deviatoric, P, P_var, P_median, normal2, tau, gamma_dot, stress,
+         law) in per_layer(frames, dp, of_frame):
         at_mean = friction(gamma_dot * m.d0 / np.sqrt(P / m.rho_s0), m) * P if P > 0.0 else np.nan
         rows.append((y, np.sqrt(trace2) / rate, np.sqrt(difference2) / rate, rate / full, rate / deviatoric,
-                     np.sqrt(P_var) / P, tau / at_mean, stress / law))
+                     np.sqrt(P_var) / P, P_median / P, np.sqrt(normal2) / (rate * dp), tau / at_mean, stress / law))
     return rows
 
 
@@ -235,11 +238,11 @@ def main():
           f"{'s':>6} {'A_xy':>6} {'align':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
-    print(f"{'y [mm]':>7} {'tr/rate':>7} {'dif/rate':>8} {'align':>6} {'dev':>6} {'P scat':>6} {'tau/tau(P)':>10} "
-          f"{'2eta e_xy/muP':>13}   (the law's inputs' noise)")
+    print(f"{'y [mm]':>7} {'tr/rate':>7} {'dif/rate':>8} {'align':>6} {'dev':>6} {'P scat':>6} {'P med':>6} "
+          f"{'v_y/rate dp':>11} {'tau/tau(P)':>10} {'2eta e_xy/muP':>13}   (the law's inputs' noise)")
     for row in noise_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f} {row[1]:7.3f} {row[2]:8.3f} {row[3]:6.3f} {row[4]:6.3f} {row[5]:6.3f} "
-              f"{row[6]:10.4f} {row[7]:13.4f}")
+              f"{row[6]:6.3f} {row[7]:11.3f} {row[8]:10.4f} {row[9]:13.4f}")
     if "drho_dt" in frames[-1]:
         print(f"{'y [mm]':>7} {'2eta e_yy':>9} {'eta tr':>7} {'of means':>8} {'tr/rate':>8} {'M tr/rate':>9} "
               f"{'cont/rate':>9}   (the bulk viscosity of 2 eta eps: stresses over s p)")
