@@ -346,7 +346,8 @@ def pair_term_factors(dim, deviatoric):
 # The momentum the particles' velocity fluctuations carry across a sheared layer, rho <v'v'> normal to
 # it, over the pressure, per (I dp / d)^2: the particles ride over each other at about half of gamma_dot dp
 # whatever the grain size d, so they add the collisional stress of grains dp large to the law's of grains
-# d. Measured on uniform incline flows at dp / d = 1, 2 and 4 (0.113-0.119; docs/INCLINE.md).
+# d. Measured on uniform incline flows at dp / d = 1, 2 and 4 without Eq. 38's artificial viscosity
+# (0.113-0.119; docs/INCLINE.md), which damps the jostle.
 JOSTLE_STRESS = 0.12
 
 
@@ -552,10 +553,10 @@ class MuIScheme(MorrisWalls, Scheme):
                 f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",
                 f"mu(I): the friction law is well-posed {where} (Barker et al. 2015, incompressible); a flow "
                 "outside that range need not converge with the resolution (mpisph/well_posedness.py)",
-                f"mu(I): the particles are dp / d = {grains:.3g} grains wide; sheared, their jostle carries about "
-                f"{JOSTLE_STRESS:g} (I dp / d)^2 of the pressure, a stress outside the law: 1 % at I = "
-                f"{jostle_inertial_number(0.01, grains):.2g}, 10 % at I = {jostle_inertial_number(0.1, grains):.2g} "
-                "(docs/INCLINE.md)")
+                f"mu(I): the particles are dp / d = {grains:.3g} grains wide; sheared (alpha = 0), their jostle "
+                f"carries about {JOSTLE_STRESS:g} (I dp / d)^2 of the pressure, a stress outside the law: 1 % at "
+                f"I = {jostle_inertial_number(0.01, grains):.2g}, 10 % at I = "
+                f"{jostle_inertial_number(0.1, grains):.2g} (docs/INCLINE.md)")
 
     def closing_report(self):
         return (self.implicit_viscosity.summary(),) if self.implicit else ()
