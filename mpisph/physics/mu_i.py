@@ -346,8 +346,8 @@ def pair_term_factors(dim, deviatoric):
 # The momentum the particles' velocity fluctuations carry across a sheared layer, rho <v'v'> normal to
 # it, over the pressure, per (I dp / d)^2: the particles ride over each other at about half of gamma_dot dp
 # whatever the grain size d, so they add the collisional stress of grains dp large to the law's of grains
-# d. Measured on uniform incline flows at dp / d = 1, 2 and 4 without Eq. 38's artificial viscosity
-# (0.113-0.119; docs/INCLINE.md), which damps the jostle.
+# d. Measured on uniform incline flows at dp / d = 1, 2 and 4 (two runs) without Eq. 38's artificial
+# viscosity, which damps the jostle: 0.110-0.119 at I = I_u (docs/INCLINE.md, the particles' jostle).
 JOSTLE_STRESS = 0.12
 
 
