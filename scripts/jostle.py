@@ -26,10 +26,10 @@ def frame_row(frame, kernel, dp, grain):
     """(t, flowing particles, jostle over pressure, pressure-weighted I dp / d or nan) of one frame."""
     speed = np.linalg.norm(frame["v"], axis=1)
     flowing = (speed > 0.2 * speed.max()) & (frame["p"] > 0.0)
-    share = jostle_pressure(frame, kernel)[flowing].sum() / frame["p"][flowing].sum()
+    p = frame["p"][flowing]
+    share = jostle_pressure(frame, kernel)[flowing].sum() / p.sum()
     I = frame.get("inertial_number")
-    scaled = np.nan if I is None or grain is None else float(
-        np.sum(I[flowing] * frame["p"][flowing]) / frame["p"][flowing].sum() * dp / grain)
+    scaled = np.nan if I is None or grain is None else float(np.sum(I[flowing] * p) / p.sum() * dp / grain)
     return frame["t"], int(flowing.sum()), float(share), scaled
 
 

@@ -145,7 +145,7 @@ def lube_collapse_2d_convergence(ranks):
         fits.append((measure.planar_runout_fits(aspects, ratio), measure.planar_runout_fits(aspects, extent)))
         rows += [(f"L_0 / dp = {n}: (L_inf - L_0) / L_0 at a = " + ", ".join(f"{x:g}" for x in aspects),
                   " / ".join(f"{x:.2f}" for x in ratio),
-                  " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in aspects), "-", "-"),
+                  " / ".join(f"{_lube_law(x):.2f}" for x in aspects), "-", "-"),
                  (f"L_0 / dp = {n}: 95 % of the mass within (x - L_0) / L_0", " / ".join(f"{x:.2f}" for x in extent),
                   "-", "-", "-")]
         rest = [r["rest"] for r in runs]
@@ -188,6 +188,12 @@ def lube_collapse_2d_convergence(ranks):
     return ("Planar collapses against the resolution, mu(I) (004_ Sec. 5.2, Lube et al. 2005)", cmd, rows, image,
             note)
 
+
+def _lube_law(a):
+    """Lube et al.'s planar runout ratio at aspect ratio ``a``: 1.2 a up to a = 1, 1.9 a^(2/3) above."""
+    return 1.2 * a if a <= 1 else 1.9 * a ** (2 / 3)
+
+
 def _variant_collapses(label, variant, aspects, L0, dp, ranks, ax, marker):
     """Rows of the planar collapses of ``aspects`` with the options ``variant`` (--set words of
     granular_flow), named ``label``: runout ratios, rest, onsets, the fitted slope and exponent; the
@@ -198,7 +204,7 @@ def _variant_collapses(label, variant, aspects, L0, dp, ranks, ax, marker):
     ax.loglog(a, ratio, marker, mfc="none", label=label)
     rows = [(f"{label}: (L_inf - L_0) / L_0 at a = " + ", ".join(f"{x:g}" for x in a),
              " / ".join(f"{x:.2f}" for x in ratio),
-             " / ".join(f"{1.2 * x if x <= 1 else 1.9 * x ** (2 / 3):.2f}" for x in a), "-", "-"),
+             " / ".join(f"{_lube_law(x):.2f}" for x in a), "-", "-"),
             (f"{label}: edge speed / peak front speed at the end", " / ".join(f"{r['rest']:.1e}" for r in runs),
              f"<= {measure.AT_REST:g}", "-", f"{measure.AT_REST:g}", all(r["rest"] <= measure.AT_REST for r in runs)),
             (f"{label}: onset [s]", " / ".join(f"{r['onset']:.3f}" for r in runs), "-", "-", "-")]
