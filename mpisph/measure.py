@@ -314,7 +314,9 @@ def jostle_pressure(frame, kernel):
     the momentum flux, as a pressure, of its velocity's departure from the kernel mean
     <v> = sum_j V_j W_ij v_j / sum_j V_j W_ij over itself and its neighbours, which follows a velocity
     that is smooth on the kernel's scale. In a shear it is the particles' jostle as they ride over each
-    other (docs/INCLINE.md, 'The particles' jostle')."""
+    other (docs/INCLINE.md, 'The particles' jostle'). The mean is that of physics/kernel_mean.py, taken
+    here with numpy: the solver loads this module (barrier_load.py) and imports no physics
+    (tests/test_architecture.py)."""
     x, v, volume = frame["x"], frame["v"], frame["mass"] / frame["rho"]
     n, dim = x.shape
     start, index = neighbour_lists(x, frame["gid"], frame["kind"], n, kernel.support, x.min(axis=0) - kernel.support)
