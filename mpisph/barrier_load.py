@@ -5,7 +5,7 @@ momentum flux of the flow arriving: alpha = F / (rho v^2 h w). A case declares i
 ``BarrierLoad`` in ``Case.barrier_loads``; each adds three columns to diagnostics.csv:
 
 - ``approach_speed_<wall>``: v, the mean of the flow-direction velocity over the points of a
-  vertical gauge line upstream that are inside the flow (kernel sum >= 1/2: measure.depth_averaged);
+  vertical gauge line upstream that are inside the flow (kernel sum >= 1/2: ``depth_averaged``);
 - ``approach_depth_<wall>``: h, the top of the material over a surface gauge's first station (above
   the line) less the bed's height there;
 - ``alpha_<wall>``: the wall's force along the flow direction (wall_forces.py) over rho v^2 h w;
@@ -19,7 +19,8 @@ arrives (docs/PRODUCTION_3D.md draws it while v is at least a tenth of its peak)
 
 from dataclasses import dataclass
 
-from . import measure
+import numpy as np
+
 from .errors import InputError
 
 
@@ -71,10 +72,28 @@ def barrier_load_values(case, forces, gauges):
         line = gauges[load.approach]
         sums = [k for k in line if k.endswith("_kernel_sum")]  # one a point, in the points' order
         component = f"_v{'xyz'[load.axis]}"
-        speed = measure.depth_averaged([[line[k.replace("_kernel_sum", component)] for k in sums]],
-                                       [[line[k] for k in sums]])[0]
+        speed = depth_averaged([[line[k.replace("_kernel_sum", component)] for k in sums]],
+                               [[line[k] for k in sums]])[0]
         depth = gauges[load.top]["s0_top"] - load.bed
         force = forces[f"force_{load.wall}_{'xyz'[load.axis]}"]
-        alpha = measure.barrier_coefficient(force, load.density, speed, depth, load.width)
+        alpha = barrier_coefficient(force, load.density, speed, depth, load.width)
         out += [float(speed), float(depth), float(alpha)]
     return out
+
+
+def depth_averaged(values, kernel_sum):
+    """Mean over the points of a vertical gauge line inside the material (kernel sum >= 1/2) of
+    ``values`` (rows: times, columns: points); nan where no point is inside."""
+    inside = np.asarray(kernel_sum) >= 0.5
+    total = np.where(inside, np.asarray(values), 0.0).sum(axis=1)
+    count = inside.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(count > 0, total / count, np.nan)
+
+
+def barrier_coefficient(force, density, speed, depth, width):
+    """Dynamic pressure coefficient alpha = F / (rho v^2 h w) of a barrier w wide struck by a flow of
+    density rho arriving at ``speed`` v with ``depth`` h (arrays over time); nan where v h = 0."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        load = density * np.asarray(speed) ** 2 * np.asarray(depth) * width
+        return np.where(load > 0, np.asarray(force) / load, np.nan)

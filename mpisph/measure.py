@@ -4,6 +4,7 @@ import numpy as np
 
 from .neighbours import neighbour_lists
 from .particles import MOVING
+from .physics.kernel_mean import kernel_mean
 
 
 def semi_axes(frame, dp):
@@ -275,24 +276,6 @@ def surface_profile(frame, dp):
     return left[occupied] + 0.5 * dp, top[occupied]
 
 
-def depth_averaged(values, kernel_sum):
-    """Mean over the points of a vertical gauge line inside the material (kernel sum >= 1/2) of
-    ``values`` (rows: times, columns: points); nan where no point is inside."""
-    inside = np.asarray(kernel_sum) >= 0.5
-    total = np.where(inside, np.asarray(values), 0.0).sum(axis=1)
-    count = inside.sum(axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(count > 0, total / count, np.nan)
-
-
-def barrier_coefficient(force, density, speed, depth, width):
-    """Dynamic pressure coefficient alpha = F / (rho v^2 h w) of a barrier w wide struck by a flow of
-    density rho arriving at ``speed`` v with ``depth`` h (arrays over time); nan where v h = 0."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        load = density * np.asarray(speed) ** 2 * np.asarray(depth) * width
-        return np.where(load > 0, np.asarray(force) / load, np.nan)
-
-
 def max_speed(frame):
     """The largest speed of a moving particle in ``frame`` (read with its walls or without)."""
     return float(np.linalg.norm(frame["v"][frame["kind"] == MOVING], axis=1).max())
@@ -310,20 +293,13 @@ def final_over_peak_speed(frames):
 
 
 def jostle_pressure(frame, kernel):
-    """rho |v - <v>|^2 / D of each particle of ``frame`` (its moving particles, no periodic images):
-    the momentum flux, as a pressure, of its velocity's departure from the kernel mean
-    <v> = sum_j V_j W_ij v_j / sum_j V_j W_ij over itself and its neighbours, which follows a velocity
-    that is smooth on the kernel's scale. In a shear it is the particles' jostle as they ride over each
-    other (docs/INCLINE.md, 'The particles' jostle'). The mean is that of physics/kernel_mean.py, taken
-    here with numpy: the solver loads this module (barrier_load.py) and imports no physics
-    (tests/test_architecture.py)."""
-    x, v, volume = frame["x"], frame["v"], frame["mass"] / frame["rho"]
-    n, dim = x.shape
-    start, index = neighbour_lists(x, frame["gid"], frame["kind"], n, kernel.support, x.min(axis=0) - kernel.support)
-    i = np.repeat(np.arange(n), np.diff(start))
-    weight = volume[index] * kernel.value(np.linalg.norm(x[i] - x[index], axis=1))
-    self_weight = volume * kernel.value(np.zeros(n))
-    total = self_weight + np.bincount(i, weight, minlength=n)
-    mean = np.stack([(self_weight * v[:, c] + np.bincount(i, weight * v[index, c], minlength=n)) / total
-                     for c in range(dim)], axis=1)
-    return frame["rho"] * ((v - mean) ** 2).sum(axis=1) / dim
+    """rho |v - <v>|^2 / D of each moving particle of ``frame`` (no periodic images; 0 on walls): the
+    momentum flux, as a pressure, of its velocity's departure from its kernel mean <v>
+    (physics/kernel_mean.py), which follows a velocity that is smooth on the kernel's scale. In a shear it is the particles'
+    jostle as they ride over each other (docs/INCLINE.md, 'The particles' jostle')."""
+    x, v, kind = frame["x"], frame["v"], frame["kind"]
+    n = len(x)
+    start, nbr = neighbour_lists(x, frame["gid"], kind, n, kernel.support, x.min(axis=0) - kernel.support)
+    mean = np.zeros_like(v)
+    kernel_mean(n, start, nbr, x, frame["rho"], frame["mass"], kind, v, kernel.params, mean)
+    return np.where(kind == MOVING, frame["rho"] * ((v - mean) ** 2).sum(axis=1) / x.shape[1], 0.0)

@@ -25,3 +25,10 @@ def test_stabiliser_lists():
     assert stabiliser_names("none") == ()
     assert stabiliser_names("utvf") == ("utvf",)
     assert stabiliser_names("tvf_limited, utvf") == ("tvf_limited", "utvf")
+
+
+def test_solver_loads_no_analysis():
+    """The measures of frames (mpisph.measure) are analysis: the step loop does not load them."""
+    code = "import sys, mpisph.solver; print('mpisph.measure' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"

@@ -101,7 +101,7 @@ def test_a_soil_surface_that_is_not_watertight_is_one_line_from_the_command_line
 def test_the_barrier_coefficient_from_a_gauge_line():
     """Depth-averaged speed over the points inside the flow (kernel sum >= 1/2), nan where none is;
     alpha = F / (rho v^2 h w), nan where the flow has not arrived."""
-    from mpisph.measure import barrier_coefficient, depth_averaged
+    from mpisph.barrier_load import barrier_coefficient, depth_averaged
 
     speed = np.array([[9.0, 9.0, 9.0], [2.0, 4.0, 9.0], [1.0, 3.0, 5.0]])
     inside = np.array([[0.0, 0.0, 0.0], [1.0, 0.6, 0.2], [1.0, 1.0, 0.5]])

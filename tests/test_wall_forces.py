@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
-from mpisph.measure import depth_averaged
+from mpisph.barrier_load import depth_averaged
 from mpirun import mpisph
 
 CASE = str(Path(__file__).parent / "cases" / "incline_bed_force.py")
