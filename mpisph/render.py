@@ -4,7 +4,8 @@ speed at chosen times, and a field on a plane cut through the body.
 ``snapshots_png`` draws one panel per time: the moving particles of the frame nearest that time,
 coloured by speed, drawn over every wall particle in light grey (so the walls between the eye and
 the body do not hide it). ``slice_png`` draws the particles within
-half a spacing of a plane, in the plane's own coordinates, coloured by a field.
+half a spacing of a plane, in the plane's own coordinates, coloured by a field; ``slice_grid_png``
+draws several runs so, a row each.
 """
 
 import os
@@ -86,27 +87,48 @@ def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", la
     """The moving particles within dp/2 of the plane origin + a u + b v at ``times``, in the plane's
     coordinates (a along u, b along v), coloured by ``field`` up to its largest value in any of them;
     returns the path."""
-    frames = frames_at(out_dir, times)
-    fig = _figure(len(frames), width=4.5, height=4.5)
+    return slice_grid_png({"": out_dir}, times, png_path, origin, u, v, field, label, title)
+
+
+def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", label="", title="",
+                   each=False):
+    """``slice_png`` of several runs, a row per run ({row title: run directory}) and a panel per time,
+    on shared axes. Coloured up to the field's largest value in any panel, or with ``each`` up to
+    each panel's own 99th percentile (printed in its title), which shows where a field that grows
+    by orders of magnitude over the times starts."""
     cuts = []
-    for f in frames:
-        moving = f["kind"] == MOVING
-        if field not in f:
-            raise InputError(f"the frames in {out_dir} have no field {field!r}")
-        dp = spacing(f)
-        a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
-        near = dist < 0.5 * dp
-        cuts.append((a[near], b[near], np.asarray(f[field][moving])[near], dp))
-    top = max(float(c[2].max()) for c in cuts if len(c[2])) or 1.0
-    for k, (f, (a, b, value, dp)) in enumerate(zip(frames, cuts)):
-        ax = fig.add_subplot(1, len(frames), k + 1)
-        sc = ax.scatter(a, b, c=value, s=4.0, cmap="magma_r", vmin=0.0, vmax=top, linewidths=0, rasterized=True)
+    for out_dir in runs.values():
+        for f in frames_at(out_dir, times):
+            moving = f["kind"] == MOVING
+            if field not in f:
+                raise InputError(f"the frames in {out_dir} have no field {field!r}")
+            a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
+            near = dist < 0.5 * spacing(f)
+            cuts.append((f["t"], a[near], b[near], np.asarray(f[field][moving])[near]))
+    tops = [float(np.percentile(c[3], 99)) if each and len(c[3]) else float(c[3].max()) if len(c[3]) else 0.0
+            for c in cuts]
+    shared = max(tops) or 1.0
+    a_all = np.concatenate([c[1] for c in cuts])
+    b_all = np.concatenate([c[2] for c in cuts])
+    columns, rows = len(times), len(runs)
+    fig = _figure(columns, width=4.5, height=4.5 * rows)
+    for k, ((t, a, b, value), top) in enumerate(zip(cuts, tops)):
+        ax = fig.add_subplot(rows, columns, k + 1)
+        vmax = (top or 1.0) if each else shared
+        sc = ax.scatter(a, b, c=value, s=4.0, cmap="magma_r", vmin=0.0, vmax=vmax, linewidths=0, rasterized=True)
+        ax.set_xlim(a_all.min(), a_all.max())
+        ax.set_ylim(min(0.0, b_all.min()), b_all.max())
         ax.set_aspect("equal")
-        ax.set_title(f"t = {f['t']:.2f} s", fontsize=10)
+        name = list(runs)[k // columns]
+        scale = f", colours to {vmax:.2g}" if each else ""
+        ax.set_title(f"{name + ': ' if name else ''}t = {t:.2f} s{scale}", fontsize=9)
         ax.set_xlabel("along the cut [m]")
         ax.set_ylabel("height [m]")
-    bar = fig.colorbar(sc, ax=fig.axes, shrink=0.8, pad=0.02)
-    bar.set_label(label or field)
+        if each:
+            fig.colorbar(sc, ax=ax, shrink=0.6, pad=0.02, ticks=[0.0, vmax])
+    if not each:
+        bar = fig.colorbar(sc, ax=fig.axes, shrink=0.8, pad=0.02)
+        bar.set_label(label or field)
     if title:
         fig.suptitle(title)
     fig.savefig(png_path, dpi=120, bbox_inches="tight", facecolor="white")

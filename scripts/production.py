@@ -373,11 +373,12 @@ def cube_band_start(ranks, reuse):
     """Where the cube's plastic strain starts, with each initial stress of ``STARTS``, at dp = 0.08 m:
     a row per start and time, the share of yielded particles (plastic strain > 0.01) in each fifth of
     the height, over the whole cube and over the plane ABC."""
-    rows, cmds, top_first, first, params = [], [], [], [], None
+    rows, cmds, top_first, first, params, outs = [], [], [], [], None, {}
     for start, label in STARTS.items():
         args = ["--set", "dp=0.08", f"initial_stress={start}", "--t-end", str(EARLY[-1]), "--output-interval", "0.05"]
         out, cmd, _, _, blow_up = run("cube_failure_3d", args, ranks, reuse, name=f"cube_band_start_{start}")
         cmds.append(f"`{cmd}`{stopped(blow_up)}")
+        outs[start] = out
         for k, f in enumerate(render.frames_at(out, EARLY)):
             params = f["params"]
             shares = [[np.mean(b > 0.01) for b in strain_by_height(f, axis)[0]] for axis in (None, ABC)]
@@ -387,6 +388,9 @@ def cube_band_start(ranks, reuse):
                 top_first.append(label)
             if k == 0:
                 first.append(f"{start} {shares[0][0]:.2f} / {shares[0][-1]:.2f}")
+    cut = render.slice_grid_png(outs, EARLY, IMG / "cube_band_start_abc.png", (0.0, 0.0, 0.0), ABC, (0.0, 0.0, 1.0),
+                                title="cube_failure_3d, dp = 0.08 m: accumulated deviatoric plastic strain on the "
+                                      "plane ABC, each panel coloured to its own 99th percentile", each=True)
     face, edge = yield_depth(params, (0.0, soil_of(params).k0)), yield_depth(params, (0.0, 0.0))
     mechanics = (f"At rest the soil meets the Drucker-Prager surface (alpha_phi I1 + sqrt(J2) = k_c) on a free face, "
                  f"where the stress across the face is zero and the one along it (1 - sin phi) sigma_v, below "
@@ -417,6 +421,11 @@ def cube_band_start(ranks, reuse):
         *rows,
         "",
         verdict,
+        "",
+        "The plane ABC at those times (a row per start), each panel coloured up to its own 99th percentile "
+        "of the strain, so that where the strain starts shows while it is still small:",
+        "",
+        f"![plane ABC, each start]({Path(cut).relative_to(DOCS)})",
         "",
         mechanics,
     ]

@@ -47,6 +47,15 @@ def test_snapshots_and_a_plane_cut_are_drawn(tmp_path):
     assert is_png(render.slice_png(run, (0.5, 1.0), tmp_path / "cut.png", (0.0, 0.0, 0.0), diagonal, (0, 0, 1.0)))
 
 
+def test_a_grid_of_plane_cuts_a_row_per_run(tmp_path):
+    """Two runs, a row each, coloured to a shared maximum or to each panel's own 99th percentile."""
+    runs = {"first": cube_run(tmp_path / "a"), "second": cube_run(tmp_path / "b")}
+    diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
+    for each in (False, True):
+        png = tmp_path / f"grid_{each}.png"
+        assert is_png(render.slice_grid_png(runs, (0.5, 1.0), png, (0.0, 0.0, 0.0), diagonal, (0, 0, 1.0), each=each))
+
+
 def test_the_plane_cut_keeps_the_particles_within_half_a_spacing():
     """The vertical plane x = y through the axis of a cube lattice centred on it: a column of
     particles on the diagonal (10 per layer), at their distance along the cut and their height."""
