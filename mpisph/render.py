@@ -110,14 +110,15 @@ def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", 
     shared = max(tops) or 1.0
     a_all = np.concatenate([c[1] for c in cuts])
     b_all = np.concatenate([c[2] for c in cuts])
+    (a_lo, a_hi), (b_lo, b_hi) = (a_all.min(), a_all.max()), (min(0.0, b_all.min()), b_all.max())
     columns, rows = len(times), len(runs)
-    fig = _figure(columns, width=4.5, height=4.5 * rows)
+    fig = _figure(columns, width=4.5, height=rows * (3.6 * max(0.3, (b_hi - b_lo) / max(a_hi - a_lo, 1e-12)) + 1.0))
     for k, ((t, a, b, value), top) in enumerate(zip(cuts, tops)):
         ax = fig.add_subplot(rows, columns, k + 1)
         vmax = (top or 1.0) if each else shared
         sc = ax.scatter(a, b, c=value, s=4.0, cmap="magma_r", vmin=0.0, vmax=vmax, linewidths=0, rasterized=True)
-        ax.set_xlim(a_all.min(), a_all.max())
-        ax.set_ylim(min(0.0, b_all.min()), b_all.max())
+        ax.set_xlim(a_lo, a_hi)
+        ax.set_ylim(b_lo, b_hi)
         ax.set_aspect("equal")
         name = list(runs)[k // columns]
         scale = f", colours to {vmax:.2g}" if each else ""
@@ -125,7 +126,7 @@ def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", 
         ax.set_xlabel("along the cut [m]")
         ax.set_ylabel("height [m]")
         if each:
-            fig.colorbar(sc, ax=ax, shrink=0.6, pad=0.02, ticks=[0.0, vmax])
+            fig.colorbar(sc, ax=ax, shrink=0.6, pad=0.02, ticks=[0.0, vmax], format="%.2g")
     if not each:
         bar = fig.colorbar(sc, ax=fig.axes, shrink=0.8, pad=0.02)
         bar.set_label(label or field)
