@@ -240,7 +240,7 @@ def inclined_plane_deep(ranks):
 def inclined_plane_deep_fine(ranks):
     """004_'s H = 0.1 m layer of ``inclined_plane_deep`` at dp = 2 mm = 4 d (H / dp = 50, 16 columns),
     where the particles' jostle carries about 3 % of the load instead of a sixth, to 70 s (above 4 T):
-    some six hours on two ranks; with --reuse an interrupted run continues from its last frame."""
+    about five hours on two ranks; with --reuse an interrupted run continues from its last frame."""
     sets = ["dp=0.002", "columns=16", "density_reinit=inner", *CONSISTENT_MU_I]
     cmd, rows, image = _steady_incline(ranks, "inclined_plane_deep_fine", sets, 70.0, 60.0, 0.25, (0.0,))
     note = (OPTIONS_NOTE +
