@@ -295,8 +295,8 @@ def final_over_peak_speed(frames):
 def jostle_pressure(frame, kernel):
     """rho |v - <v>|^2 / D of each moving particle of ``frame`` (no periodic images; 0 on walls): the
     momentum flux, as a pressure, of its velocity's departure from its kernel mean <v>
-    (physics/kernel_mean.py), which follows a velocity that is smooth on the kernel's scale. In a shear it is the particles'
-    jostle as they ride over each other (docs/INCLINE.md, 'The particles' jostle')."""
+    (physics/kernel_mean.py), which follows a velocity that is smooth on the kernel's scale. In a shear
+    it is the particles' jostle as they ride over each other (docs/INCLINE.md, 'The particles' jostle')."""
     x, v, kind = frame["x"], frame["v"], frame["kind"]
     n = len(x)
     start, nbr = neighbour_lists(x, frame["gid"], kind, n, kernel.support, x.min(axis=0) - kernel.support)

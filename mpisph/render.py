@@ -90,6 +90,14 @@ def slice_png(out_dir, times, png_path, origin, u, v, field="plastic_strain", la
     return slice_grid_png({"": out_dir}, times, png_path, origin, u, v, field, label, title)
 
 
+def _colour_top(values, each):
+    """The top of a panel's colour scale: the 99th percentile of ``values`` with ``each``, else their
+    largest; 0 for no values."""
+    if not len(values):
+        return 0.0
+    return float(np.percentile(values, 99)) if each else float(values.max())
+
+
 def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", label="", title="",
                    each=False):
     """``slice_png`` of several runs, a row per run ({row title: run directory}) and a panel per time,
@@ -105,8 +113,7 @@ def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", 
             a, b, dist = plane_coordinates(f["x"][moving], origin, u, v)
             near = dist < 0.5 * spacing(f)
             cuts.append((f["t"], a[near], b[near], np.asarray(f[field][moving])[near]))
-    tops = [float(np.percentile(c[3], 99)) if each and len(c[3]) else float(c[3].max()) if len(c[3]) else 0.0
-            for c in cuts]
+    tops = [_colour_top(value, each) for *_, value in cuts]
     shared = max(tops) or 1.0
     a_all = np.concatenate([c[1] for c in cuts])
     b_all = np.concatenate([c[2] for c in cuts])
