@@ -455,8 +455,9 @@ def main():
         misses += missed
     head = ["# The 3D cases at the paper's spacing", "",
             f"Written by `scripts/production.py` ({a.ranks} ranks; `--only NAME` re-runs one and keeps the other "
-            "sections). The pictures are drawn off-screen by `mpisph/render.py`.", ""]
-    page.write(PAGE, kept, RUNNERS, head="\n".join(head) + "\n")
+            "sections and the text above them). The pictures are drawn off-screen by `mpisph/render.py`.", ""]
+    kept_head = page.existing_head(PAGE) if a.only else None
+    page.write(PAGE, kept, RUNNERS, head=kept_head or "\n".join(head) + "\n")
     if misses:
         raise SystemExit("missed:\n" + "\n".join(misses))
 

@@ -23,3 +23,16 @@ def test_a_rerun_section_replaces_its_own_text_and_keeps_the_others(tmp_path):
     kept = page.existing_sections(path)
     assert kept["b"] == first["b"] and "Rerun." in kept["a"] and "| rest |" not in kept["a"]
     assert page.existing_sections(tmp_path / "missing.md") == {}
+
+
+def test_the_text_above_the_sections_is_read_back_as_written(tmp_path):
+    """What a page holds before its first section (production.py --only keeps it, hand-written
+    paragraphs included); None for a page that is missing or has no section."""
+    page = load_package("validation.page")
+    path = tmp_path / "PAGE.md"
+    head = "# Page\n\nA paragraph added by hand.\n\n"
+    page.write(path, {"a": page.section("a", "Case A", "cmd", [], "a.png", "")}, ["a"], head=head)
+    assert page.existing_head(path) == head
+    assert page.existing_head(tmp_path / "missing.md") is None
+    path.write_text("# No sections\n")
+    assert page.existing_head(path) is None

@@ -19,6 +19,15 @@ def existing_sections(page):
     return out
 
 
+def existing_head(page):
+    """The text of an existing page before its first section marker, or None: a run of some sections
+    keeps it (scripts/production.py --only), with what was added to it by hand."""
+    if not page.exists():
+        return None
+    text = page.read_text()
+    return text[:text.index("<!-- section: ")] if "<!-- section: " in text else None
+
+
 def section(name, title, cmd, rows, image, note):
     """The Markdown of one validation: its title, command, table of rows (quantity, mpisph, reference,
     error, tolerance; a sixth entry, whether the row meets its tolerance, is not shown), note and plot."""
