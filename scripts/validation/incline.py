@@ -221,34 +221,39 @@ def inclined_plane_steady(ranks):
     return "Inclined plane at its steady state, H = 0.02 m (004_ Sec. 5.1)", cmd, rows, image, note
 
 
+def _deep_incline(ranks, name, sets, t_end, steady, interval, note):
+    """A section of 004_'s H = 0.1 m layer with the corrected stress and the three options of
+    ``inclined_plane_steady`` (the --set words ``sets`` before them), ``note`` after OPTIONS_NOTE:
+    (command, rows, image, note)."""
+    sets = [*sets, "density_reinit=inner", *CONSISTENT_MU_I]
+    return (*_steady_incline(ranks, name, sets, t_end, steady, interval, (0.0,)), OPTIONS_NOTE + note)
+
+
 def inclined_plane_deep(ranks):
     """004_'s layer (Table 2: H = 0.1 m, dp = 5 mm, 40 columns, m_0 = 1 s) with the corrected stress
     and the three options of ``inclined_plane_steady``, to its steady state: about 6 T = 90 s, some
     eight hours on two ranks; with --reuse an interrupted run continues from its last frame."""
-    sets = ["density_reinit=inner", *CONSISTENT_MU_I]
-    cmd, rows, image = _steady_incline(ranks, "inclined_plane_deep", sets, 100.0, 90.0, 2.0, (0.0,))
-    note = (OPTIONS_NOTE +
-            "The case's defaults are 004_ Table 2's layer, K_t for Mach 0.1 at the analytical surface speed. The "
-            "layer relaxes to its uniform flow with T = 15 s (references.inclined_plane_relaxation_time), so the "
-            "figures are means over the frames from 90 s (6 T), as the CI-sized layer's are from 6 T. Its particles "
-            "are dp / d = 10 grains wide, where the CI-sized layer's are 2: sheared, they ride over each other and "
-            "carry about 0.12 (I dp / d)^2 of the pressure themselves, here a sixth of the load, a stress outside the "
-            "law (docs/INCLINE.md, 'The particles' jostle'); the law would need dp of about 2 d, H / dp = 100.")
-    return "Inclined plane at its steady state, H = 0.1 m (004_ Sec. 5.1, Table 2)", cmd, rows, image, note
+    section = _deep_incline(
+        ranks, "inclined_plane_deep", [], 100.0, 90.0, 2.0,
+        "The case's defaults are 004_ Table 2's layer, K_t for Mach 0.1 at the analytical surface speed. The "
+        "layer relaxes to its uniform flow with T = 15 s (references.inclined_plane_relaxation_time), so the "
+        "figures are means over the frames from 90 s (6 T), as the CI-sized layer's are from 6 T. Its particles "
+        "are dp / d = 10 grains wide, where the CI-sized layer's are 2: sheared, they ride over each other and "
+        "carry about 0.12 (I dp / d)^2 of the pressure themselves, here a sixth of the load, a stress outside the "
+        "law (docs/INCLINE.md, 'The particles' jostle'); the law would need dp of about 2 d, H / dp = 100.")
+    return ("Inclined plane at its steady state, H = 0.1 m (004_ Sec. 5.1, Table 2)", *section)
 
 
 def inclined_plane_deep_fine(ranks):
     """004_'s H = 0.1 m layer of ``inclined_plane_deep`` at dp = 2 mm = 4 d (H / dp = 50, 16 columns),
     where the particles' jostle carries about 3 % of the load instead of a sixth, to 70 s (above 4 T):
     about five hours on two ranks; with --reuse an interrupted run continues from its last frame."""
-    sets = ["dp=0.002", "columns=16", "density_reinit=inner", *CONSISTENT_MU_I]
-    cmd, rows, image = _steady_incline(ranks, "inclined_plane_deep_fine", sets, 70.0, 60.0, 0.25, (0.0,))
-    note = (OPTIONS_NOTE +
-            "The layer of the section before at 2.5 times its resolution, the spacing at which the CI-sized "
-            "layer's particles are as many grains wide (dp / d = 4 at H / dp = 10 and 20 meets the tolerances "
-            "there: docs/INCLINE.md, 'The particles' jostle'). 004_ Table 2's dp = 5 mm is the section before. "
-            "16 columns (32 mm along the slope) as the CI-sized layers at H / dp = 10: the uniform flow does not "
-            "vary along the slope, and the periodic length is 16 spacings there as here. Figures are means over "
-            "the frames from 60 s (4 T), every 0.25 s.")
-    return "Inclined plane at its steady state, H = 0.1 m at dp = 2 mm (004_ Sec. 5.1)", cmd, rows, image, note
-
+    section = _deep_incline(
+        ranks, "inclined_plane_deep_fine", ["dp=0.002", "columns=16"], 70.0, 60.0, 0.25,
+        "The layer of the section before at 2.5 times its resolution, the spacing at which the CI-sized "
+        "layer's particles are as many grains wide (dp / d = 4 at H / dp = 10 and 20 meets the tolerances "
+        "there: docs/INCLINE.md, 'The particles' jostle'). 004_ Table 2's dp = 5 mm is the section before. "
+        "16 columns (32 mm along the slope) as the CI-sized layers at H / dp = 10: the uniform flow does not "
+        "vary along the slope, and the periodic length is 16 spacings there as here. Figures are means over "
+        "the frames from 60 s (4 T), every 0.25 s.")
+    return ("Inclined plane at its steady state, H = 0.1 m at dp = 2 mm (004_ Sec. 5.1)", *section)
