@@ -118,7 +118,7 @@ def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", 
     a_all = np.concatenate([c[1] for c in cuts])
     b_all = np.concatenate([c[2] for c in cuts])
     (a_lo, a_hi), (b_lo, b_hi) = (a_all.min(), a_all.max()), (min(0.0, b_all.min()), b_all.max())
-    columns, rows = len(times), len(runs)
+    names, columns, rows = list(runs), len(times), len(runs)
     fig = _figure(columns, width=4.5, height=rows * (3.6 * max(0.3, (b_hi - b_lo) / max(a_hi - a_lo, 1e-12)) + 1.0))
     for k, ((t, a, b, value), top) in enumerate(zip(cuts, tops)):
         ax = fig.add_subplot(rows, columns, k + 1)
@@ -127,7 +127,7 @@ def slice_grid_png(runs, times, png_path, origin, u, v, field="plastic_strain", 
         ax.set_xlim(a_lo, a_hi)
         ax.set_ylim(b_lo, b_hi)
         ax.set_aspect("equal")
-        name = list(runs)[k // columns]
+        name = names[k // columns]
         scale = f", colours to {vmax:.2g}" if each else ""
         ax.set_title(f"{name + ': ' if name else ''}t = {t:.2f} s{scale}", fontsize=9)
         ax.set_xlabel("along the cut [m]")

@@ -2,6 +2,7 @@
 sections keeps the others (scripts/production.py writes its page the same way)."""
 
 MARK = "<!-- section: {} -->"
+OPENING = MARK.split("{")[0]  # what every marker begins with
 HEAD = ("# Validation\n\nWritten by `python scripts/validate.py` (each section's command gives its rank "
         "count; `--only NAME ...` re-runs some and keeps the other sections); the tests in "
         "`tests/test_validation.py`, `tests/test_validation_solids.py` and `tests/test_validation_beam.py` "
@@ -13,9 +14,9 @@ def existing_sections(page):
     if not page.exists():
         return {}
     out = {}
-    for chunk in page.read_text().split("<!-- section: ")[1:]:
+    for chunk in page.read_text().split(OPENING)[1:]:
         name = chunk.split(" -->", 1)[0]
-        out[name] = "<!-- section: " + chunk.rstrip("\n") + "\n"
+        out[name] = OPENING + chunk.rstrip("\n") + "\n"
     return out
 
 
@@ -25,7 +26,7 @@ def existing_head(page):
     if not page.exists():
         return None
     text = page.read_text()
-    return text[:text.index("<!-- section: ")] if "<!-- section: " in text else None
+    return text[:text.index(OPENING)] if OPENING in text else None
 
 
 def section(name, title, cmd, rows, image, note):
