@@ -17,7 +17,7 @@ import numpy as np
 
 from mpisph.case import Body, Case, Param, Wall
 from mpisph.geometry import bed_layers, block, depth, lattice_layers, support_layers
-from mpisph.granular_column import column_params, sand
+from mpisph.granular_column import column_params, sand, side_wall_params, side_walls
 from mpisph.granular_flow import mu_i_scheme
 
 PARAMS = {
@@ -27,6 +27,7 @@ PARAMS = {
                  positive=True),
     "columns": Param(16, "-", "particles along the periodic x (its length is columns * dp)", positive=True),
     **{k: v for k, v in column_params(a=2.0, dp=0.00243, m_0=1.2).items() if k != "a"},
+    **side_wall_params(),
     "t_end": Param(0.25, "s", "simulated end time", positive=True),
     "output_interval": Param(0.01, "s", "simulated time between frames", positive=True),
 }
@@ -51,4 +52,5 @@ def setup(p):
         gravity=(0.0, -p.g),
         u_ref=math.sqrt(p.g * p.H_0),
         density_reinit=p.density_reinit,
+        forces=side_walls(p, p.H),
     )

@@ -1,0 +1,78 @@
+"""The side walls' Coulomb friction on a plane-strain granular flow (physics/side_walls.py): the
+acceleration of one particle by hand, and a sheet on a free-slip floor (tests/cases/walled_sheet.py)
+that loses to the walls exactly the momentum their friction takes."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.particles import MOVING, WALL
+from mpisph.physics.side_walls import add_side_wall_friction
+from mpirun import mpisph, stderr_lines
+
+SHEET = str(Path(__file__).parent / "cases" / "walled_sheet.py")
+RATE = 2.0 * 0.4 / 0.1  # 2 mu_w / W
+
+
+def friction(v, p=500.0, rho=1500.0, kind=MOVING, v_reg=0.01):
+    acc = np.zeros((1, 2))
+    add_side_wall_friction(1, np.array([kind]), np.array([v], dtype=float), np.array([p]), np.array([rho]),
+                           RATE, v_reg, acc)
+    return acc[0]
+
+
+def test_above_the_regularising_speed_it_is_coulombs_law_against_the_motion():
+    np.testing.assert_allclose(friction([0.3, -0.4]), -RATE * 500.0 / 1500.0 * np.array([0.6, -0.8]), rtol=1e-14)
+
+
+def test_below_the_regularising_speed_it_falls_linearly_to_zero():
+    slow = np.array([0.003, 0.004])  # |v| = v_reg / 2
+    np.testing.assert_allclose(friction(slow), -RATE * 500.0 / 1500.0 * slow / 0.01, rtol=1e-14)
+    np.testing.assert_array_equal(friction([0.0, 0.0]), [0.0, 0.0])
+
+
+def test_no_friction_in_tension_nor_on_walls():
+    np.testing.assert_array_equal(friction([1.0, 0.0], p=-10.0), [0.0, 0.0])
+    np.testing.assert_array_equal(friction([1.0, 0.0], kind=WALL), [0.0, 0.0])
+
+
+@pytest.fixture(scope="module")
+def sheets(tmp_path_factory):
+    """The sheet without side walls and between walls its own depth apart (friction angle 20 deg)."""
+    out = {}
+    for width in (0.0, 0.00972):
+        out[width] = tmp_path_factory.mktemp(f"sheet_{width}")
+        r = mpisph([SHEET, "--set", f"channel_width={width}", "wall_friction_deg=20", "output_interval=0.001",
+                    "--out", out[width], "--quiet"], ranks=1)
+        assert r.returncode == 0, r.stderr
+    return out
+
+
+def test_without_side_walls_nothing_takes_the_sheets_momentum(sheets):
+    momentum = read_diagnostics(sheets[0.0] / "diagnostics.csv")["momentum_x"]
+    np.testing.assert_allclose(momentum, momentum[0], rtol=1e-12)
+
+
+def test_the_walls_take_the_momentum_of_their_friction(sheets):
+    """Every grain moves along +x faster than the regularising speed, so the walls take
+    2 mu_w / W sum_i V_i p_i per unit time: its integral over the frames is the momentum lost."""
+    frames = [read_frame(f) for f in list_frames(sheets[0.00972])]
+    assert all(f["v"][f["kind"] == MOVING, 0].min() > 0.9 for f in frames)
+    rate = 2.0 * math.tan(math.radians(20.0)) / 0.00972
+    force = [-rate * np.sum((f["mass"] * f["p"] / f["rho"])[f["kind"] == MOVING]) for f in frames]
+    impulse = np.trapezoid(force, [f["t"] for f in frames])
+    momentum = read_diagnostics(sheets[0.00972] / "diagnostics.csv")["momentum_x"]
+    assert momentum[-1] - momentum[0] == pytest.approx(impulse, rel=0.01)
+    assert impulse < -0.07 * momentum[0]  # the friction is not negligible: 7 % of the momentum in 0.02 s
+
+
+@pytest.mark.parametrize("setting", ["channel_width=-0.1", "wall_friction_deg=90"])
+def test_bad_side_walls_are_one_line_errors(tmp_path, setting):
+    r = mpisph([SHEET, "--set", "channel_width=0.1", setting, "--out", tmp_path, "--quiet"], ranks=1)
+    assert r.returncode == 2
+    lines = stderr_lines(r.stderr)
+    assert len(lines) == 1 and "side walls need" in lines[0]
