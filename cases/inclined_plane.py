@@ -10,6 +10,10 @@ surface speed (Sec. 5.1), which is K_t = 1.3e-7 1/Pa here
 (granular_flow.mach_compressibility); Table 2 prints 1.5e-5, about
 1/(rho0 c0), which puts that flow at Mach 1.1. The steady profile is
 references.inclined_plane_velocity; 004_ reached it after about 6.5 s.
+With ``channel_width`` > 0 the layer flows in a channel that narrow, whose side
+walls hold it back (physics/side_walls.py; Jop et al. 2005): its steady profile
+is references.inclined_plane_velocity_between_walls, from which K_t then takes
+its Mach number.
 """
 
 import dataclasses
@@ -17,8 +21,8 @@ import math
 
 from mpisph.case import Body, Case, MuIGranular, Param, Wall, density_reinit_param
 from mpisph.geometry import bed, box, support_layers
-from mpisph.granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
-from mpisph.references import inclined_plane_surface_velocity
+from mpisph.granular_flow import mach_compressibility, mu_i_params, mu_i_scheme, side_wall_params, side_walls
+from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity_between_walls
 
 PARAMS = {
     "H": Param(0.1, "m", "depth of the layer", positive=True),
@@ -38,6 +42,7 @@ PARAMS = {
     "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55)", positive=True),
     "m_0": Param(1.0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
     **mu_i_params("004_ Fig. 6 also uses 0.05", "explicit"),
+    **side_wall_params(),
     "density_reinit": density_reinit_param("none"),
     "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
                            "(001_ Eqs. 9-11) keeps a configuration for 0.25 h/|v|, over which the sheared layer "
@@ -56,8 +61,13 @@ def setup(p):
     if slope >= material.mu_2:
         warnings.append(f"tan(theta) = {slope:.4g} >= mu_2 = {material.mu_2:.4g}: no steady flow exists, the "
                         f"layer accelerates without bound")
+    forces = side_walls(p, p.H)
     try:
         u_ref = inclined_plane_surface_velocity(material, p.theta, p.H, p.g)
+        if forces:  # the walls' flow, or sqrt(g H) where they hold the whole layer
+            u_ref = float(inclined_plane_velocity_between_walls(
+                material, p.theta, p.H, p.g, p.channel_width, math.tan(math.radians(p.wall_friction_deg)), p.H))
+            u_ref = u_ref if u_ref > 0 else math.sqrt(p.g * p.H)
     except ValueError:  # no uniform flow: the layer stays at rest or accelerates
         u_ref = math.sqrt(p.g * p.H)
     if p.K_t == 0:  # the steady flow above does not depend on K_t
@@ -81,4 +91,5 @@ def setup(p):
         density_reinit=p.density_reinit,
         u_ref=u_ref,
         warnings=warnings,
+        forces=forces,
     )

@@ -13,7 +13,8 @@ channel that narrow, whose side walls hold the grains back by Coulomb friction
 """
 
 from mpisph.case import Param
-from mpisph.granular_column import column_params, planar_column, side_wall_params, side_walls
+from mpisph.granular_column import column_params, planar_column
+from mpisph.granular_flow import side_wall_params, side_walls
 
 PARAMS = {
     "L_0": Param(0.0972, "m", "length of the column from the back wall", positive=True),

@@ -17,8 +17,8 @@ import numpy as np
 
 from mpisph.case import Body, Case, Param, Wall
 from mpisph.geometry import bed_layers, block, depth, lattice_layers, support_layers
-from mpisph.granular_column import column_params, sand, side_wall_params, side_walls
-from mpisph.granular_flow import mu_i_scheme
+from mpisph.granular_column import column_params, sand
+from mpisph.granular_flow import mu_i_scheme, side_wall_params, side_walls
 
 PARAMS = {
     "H": Param(0.00972, "m", "depth of the sheet", positive=True),

@@ -19,10 +19,8 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 import math
 
 from .case import Body, Case, Front, MuIGranular, Param, Wall, density_reinit_param
-from .errors import InputError
 from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
-from .physics.side_walls import SideWallFriction
 from .references import MU_I_MATERIALS, planar_runout
 
 SAND = MU_I_MATERIALS["sand_0.4mm"]
@@ -62,28 +60,6 @@ def sand(p, H0):
     tau_0 = p.tau_0 if p.tau_0 != 0 else mu_s * rho0 * p.g * H0
     return MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=mu_s, mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0,
                        K_t=K_t, tau_0=tau_0, m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
-
-
-def side_wall_params():
-    """Typed parameters of two side walls across the plane of a 2D run (physics/side_walls.py)."""
-    return {
-        "channel_width": Param(0.0, "m", "gap between two side walls across the plane, whose friction the grains "
-                               "feel (physics/side_walls.py); 0: none, plane strain"),
-        "wall_friction_deg": Param(0.0, "deg", "friction angle of the side walls on the grains, mu_w = tan"),
-    }
-
-
-def side_walls(p, height):
-    """The case's force terms of the side walls of ``p`` (side_wall_params) on grains of a layer or
-    column ``height`` high: none for channel_width = 0, else their friction, regularised below a
-    hundredth of sqrt(g height)."""
-    if p.channel_width == 0:
-        return []
-    if p.channel_width < 0 or not 0 <= p.wall_friction_deg < 90:
-        raise InputError(f"side walls need channel_width > 0 and wall_friction_deg in [0, 90), not "
-                         f"{p.channel_width} m and {p.wall_friction_deg} deg")
-    return [SideWallFriction(p.channel_width, math.tan(math.radians(p.wall_friction_deg)),
-                             0.01 * math.sqrt(p.g * height))]
 
 
 def column_case_settings(p, material, column, H0, front_axes, sides):

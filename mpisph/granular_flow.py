@@ -1,10 +1,15 @@
 """What every mu(I) case shares (004_): the scheme's discretisation options as case parameters,
-the scheme and integrator they select, and the grain compressibility of a chosen Mach number."""
+the scheme and integrator they select, the grain compressibility of a chosen Mach number, and side
+walls across the plane of a 2D run."""
+
+import math
 
 from .case import Param
+from .errors import InputError
 from .physics.implicit_viscosity import TOLERANCE
 from .physics.mu_i import (LAW_PRESSURES, LAW_STRAIN_RATES, PRESSURE_FORMS, VISCOSITY_MEANS, VISCOUS_FORMS,
                           VISCOUS_STEPS, VISCOUS_STRESSES)
+from .physics.side_walls import SideWallFriction
 
 MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
 
@@ -68,3 +73,25 @@ def mu_i_scheme(p):
                                 "viscosity_mean": p.viscosity_mean,
                                 "pressure_form": p.pressure_form, "law_pressure": p.law_pressure,
                                 "law_strain_rate": p.law_strain_rate, "viscous_tolerance": p.viscous_tolerance})
+
+
+def side_wall_params():
+    """Typed parameters of two side walls across the plane of a 2D run (physics/side_walls.py)."""
+    return {
+        "channel_width": Param(0.0, "m", "gap between two side walls across the plane, whose friction the grains "
+                               "feel (physics/side_walls.py); 0: none, plane strain"),
+        "wall_friction_deg": Param(0.0, "deg", "friction angle of the side walls on the grains, mu_w = tan"),
+    }
+
+
+def side_walls(p, height):
+    """The case's force terms of the side walls of ``p`` (side_wall_params) on grains of a layer or
+    column ``height`` high: none for channel_width = 0, else their friction, regularised below a
+    hundredth of sqrt(g height)."""
+    if p.channel_width == 0:
+        return []
+    if p.channel_width < 0 or not 0 <= p.wall_friction_deg < 90:
+        raise InputError(f"side walls need channel_width > 0 and wall_friction_deg in [0, 90), not "
+                         f"{p.channel_width} m and {p.wall_friction_deg} deg")
+    return [SideWallFriction(p.channel_width, math.tan(math.radians(p.wall_friction_deg)),
+                             0.01 * math.sqrt(p.g * height))]

@@ -1,7 +1,8 @@
 """Measures of a layer flowing down a periodic slope (the case inclined_plane) against the uniform
-flow of 004_ Sec. 5.1 (references.inclined_plane_velocity) of the same grains, whose depth is the
-layer's at rest dilated to the uniform flow's volume fraction (``flow_depth``), frame by frame, over
-dp-thick layers above the bed {y = 0}: for scripts/incline_layers.py and scripts/validate.py."""
+flow of 004_ Sec. 5.1 (references.inclined_plane_velocity, or between the run's side walls
+references.inclined_plane_velocity_between_walls) of the same grains, whose depth is the layer's at
+rest dilated to the uniform flow's volume fraction (``flow_depth``), frame by frame, over dp-thick
+layers above the bed {y = 0}: for scripts/incline_layers.py and scripts/validate.py."""
 
 import math
 
@@ -10,7 +11,8 @@ import numpy as np
 from . import measure
 from .references import (inclined_plane_flow_depth, inclined_plane_mean_velocity_with_viscosity,
                          inclined_plane_surface_velocity, inclined_plane_velocity,
-                         inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
+                         inclined_plane_velocity_between_walls, inclined_plane_velocity_with_viscosity,
+                         pair_viscosity_of_alpha)
 from .tensors import unpacked
 
 
@@ -20,14 +22,32 @@ def flow_depth(p, material):
     return inclined_plane_flow_depth(material, p["theta"], p["H"])
 
 
+def analytical_velocity(p, material, z):
+    """The uniform flow's u at the heights ``z`` (clipped to the flow depth): between the run's side
+    walls when it has them (``channel_width`` > 0), else 004_'s."""
+    theta, H, g = p["theta"], flow_depth(p, material), p["g"]
+    z = np.clip(np.asarray(z, dtype=float), 0.0, H)
+    if p.get("channel_width", 0.0) > 0:
+        mu_w = math.tan(math.radians(p["wall_friction_deg"]))
+        return inclined_plane_velocity_between_walls(material, theta, H, g, p["channel_width"], mu_w, z)
+    return inclined_plane_velocity(material, theta, H, g, z)
+
+
+def analytical_mean(p, material):
+    """The mean of ``analytical_velocity`` over the flow depth: 3/5 of the surface speed of 004_'s
+    u(z) ~ H^(3/2) - (H - z)^(3/2)."""
+    if p.get("channel_width", 0.0) > 0:
+        return float(analytical_velocity(p, material, np.linspace(0.0, flow_depth(p, material), 2001)).mean())
+    return 0.6 * inclined_plane_surface_velocity(material, p["theta"], flow_depth(p, material), p["g"])
+
+
 def layer_speeds(frame, p, material):
     """(mean speed along the slope over the analytical mean, mean speed of the particles within dp/2
-    of the top over the analytical surface speed) of one frame; the analytical mean of
-    u(z) ~ H^(3/2) - (H - z)^(3/2) over the depth is 3/5 of its surface value."""
+    of the top over the analytical surface speed) of one frame."""
     x, u = frame["x"], frame["v"][:, 0]
-    surface = inclined_plane_surface_velocity(material, p["theta"], flow_depth(p, material), p["g"])
+    surface = float(analytical_velocity(p, material, np.inf))
     top = x[:, 1] > x[:, 1].max() - 0.5 * p["dp"]
-    return float(u.mean() / (0.6 * surface)), float(u[top].mean() / surface)
+    return float(u.mean() / analytical_mean(p, material)), float(u[top].mean() / surface)
 
 
 def with_artificial_viscosity(p, material):
@@ -76,11 +96,11 @@ def profile_figures(frame, p, material):
     """(L2 error of the layers' speed against u(z) at their heights clipped to [0, H], H the flow
     depth, the layers' mean pressure over their mean hydrostatic pressure, the same for s p) of one
     frame, over dp-thick layers (measure.layer_means)."""
-    dp, theta, H, g = p["dp"], p["theta"], flow_depth(p, material), p["g"]
+    dp = p["dp"]
     y, u = measure.layer_means(frame, dp, frame["v"][:, 0])
     _, pressure = measure.layer_means(frame, dp, frame["p"])
     _, carried = measure.layer_means(frame, dp, kernel_moment(frame)[0] * frame["p"])
-    u_a = inclined_plane_velocity(material, theta, H, g, np.clip(y, 0.0, H))
+    u_a = analytical_velocity(p, material, y)
     p_h = hydrostatic(frame, p).mean()
     return (float(np.sqrt(np.mean((u - u_a) ** 2) / np.mean(u_a**2))), float(pressure.mean() / p_h),
             float(carried.mean() / p_h))

@@ -176,24 +176,32 @@ def pair_viscosity_of_alpha(alpha, h, c0, dim):
     return alpha * h * c0 / (2.0 * (dim + 2))
 
 
-def _uniform_flow_with_viscosity(material, theta_deg, H, g, nu, samples=4001):
+def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, samples=4001):
     """(height, speed, pressure) from the bed up of the steady uniform mu(I) layer with a Newtonian
-    kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``)."""
+    kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``) or between side
+    walls (``wall_rate`` = 2 mu_w / W, ``inclined_plane_velocity_between_walls``)."""
     m = material.params
     tan, cos = np.tan(np.radians(theta_deg)), np.cos(np.radians(theta_deg))
     I_u, phi_u = material.uniform_flow(theta_deg)
     p = phi_u * material.rho_s0 * g * cos * H * np.linspace(1.0, 0.0, samples) ** 2  # bed to top, finer at the top
-    lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0: I <= I_u
     root = np.sqrt(p / material.rho_s0)
-    for _ in range(100):  # bisection: the left side rises with I
+    phi = np.full_like(p, phi_u)
+    for _ in range(1 if wall_rate == 0.0 else 30):  # the walls' share depends on phi(I) above: a fixed point
+        depth_per_pressure = 1.0 / (phi * material.rho_s0 * g * cos)
+        # the walls' load per area above each depth: wall_rate times the integral of p over the depth
+        held = wall_rate * np.concatenate((np.cumsum((0.5 * (p[1:] * depth_per_pressure[1:] + p[:-1]
+                                                             * depth_per_pressure[:-1]) * -np.diff(p))[::-1])[::-1],
+                                           [0.0]))
+        friction = tan - held / np.maximum(p, 1e-300)
+        lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0, walls: I <= I_u
+        for _ in range(100):  # bisection: the left side rises with I
+            I = 0.5 * (lo + hi)
+            a = I + m.I_s
+            excess = m.mu_s + (m.mu_2 - m.mu_s) * a / (a + m.I_0) - friction
+            excess += (m.phi_max - (m.phi_max - m.phi_min) * I) * nu * I / (np.maximum(root, 1e-300) * material.d0)
+            lo, hi = np.where(excess < 0.0, I, lo), np.where(excess < 0.0, hi, I)
         I = 0.5 * (lo + hi)
-        a = I + m.I_s
         phi = m.phi_max - (m.phi_max - m.phi_min) * I
-        excess = m.mu_s + (m.mu_2 - m.mu_s) * a / (a + m.I_0) - tan
-        excess += phi * nu * I / (np.maximum(root, 1e-300) * material.d0)
-        lo, hi = np.where(excess < 0.0, I, lo), np.where(excess < 0.0, hi, I)
-    I = 0.5 * (lo + hi)
-    phi = m.phi_max - (m.phi_max - m.phi_min) * I
     dz_dp = 1.0 / (phi * material.rho_s0 * g * cos)  # height gained per pressure lost upwards
     du_dp = I * root / material.d0 * dz_dp
     lost = -np.diff(p)
@@ -214,15 +222,31 @@ def inclined_plane_velocity_with_viscosity(material, theta_deg, H, g, nu, z):
     then gamma_dot = I sqrt(p / rho_s0) / d and dp/dz = -phi(I) rho_s0 g cos(theta); u(z) is
     gamma_dot integrated from the bed. nu = 0 gives ``inclined_plane_velocity``. Heights above the
     layer's top take the top's speed. Grains incompressible, as there."""
-    height, speed, _ = _uniform_flow_with_viscosity(material, theta_deg, H, g, nu)
+    height, speed, _ = _uniform_flow(material, theta_deg, H, g, nu=nu)
     return np.interp(np.asarray(z, dtype=float), height, speed)
 
 
 def inclined_plane_mean_velocity_with_viscosity(material, theta_deg, H, g, nu):
     """The mass-weighted mean of ``inclined_plane_velocity_with_viscosity`` over the layer (the
     mean over its pressure, dp being the mass per area times g cos(theta))."""
-    _, speed, p = _uniform_flow_with_viscosity(material, theta_deg, H, g, nu)
+    _, speed, p = _uniform_flow(material, theta_deg, H, g, nu=nu)
     return float(np.sum(0.5 * (speed[1:] + speed[:-1]) * -np.diff(p)) / p[0])
+
+
+def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w, z):
+    """Steady uniform velocity u(z) of the mu(I) layer of ``inclined_plane_velocity`` (the same mass
+    per area, phi_u rho_s0 H) in a channel ``width`` wide whose side walls hold it back with the
+    friction coefficient ``mu_w`` (physics/side_walls.py; Jop, Forterre & Pouliquen 2005). The walls
+    take 2 mu_w p / W per unit volume, so at depth zeta below the surface the shear stress is
+    p tan(theta) - (2 mu_w / W) int_0^zeta p, and the friction the law must carry falls with depth,
+
+        mu(I) = tan(theta) - (2 mu_w / (W p)) int_0^zeta p dzeta'   (= tan(theta) - mu_w zeta / W at constant phi),
+
+    down to the depth where it reaches mu(0): below it the grains rest (mpisph's derivation after Jop
+    et al.'s). u(z) is gamma_dot = I sqrt(p / rho_s0) / d integrated from the bed, p the weight above
+    at phi(I) of Eq. 8. Grains incompressible, as there."""
+    height, speed, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width)
+    return np.interp(np.asarray(z, dtype=float), height, speed)
 
 
 def inclined_plane_pressure(material, theta_deg, H, g, z):

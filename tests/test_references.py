@@ -128,3 +128,29 @@ def test_the_sand_columns_take_what_004_table_3_prints(row):
     assert (1.0 / (material.rho_s0 * c0) == pytest.approx(K_t, rel=0.015)) == (row != 6)
     eta_0 = material.eta_max(tau_0) - tau_0 * m_0  # Eq. 53's first term; m_p(tau_0) = m_0
     assert round((eta_max - eta_0) / tau_0, 1) == m_0
+
+
+def test_uniform_flow_between_side_walls():
+    """Jop et al.'s (2005) layer: with phi nearly constant the walls leave mu(I) = tan(theta) - mu_w
+    zeta / W at depth zeta, so the grains flow down to zeta_f = W (tan(theta) - mu_s) / mu_w and rest
+    below it; far-apart walls give the plane-strain profile."""
+    import dataclasses
+
+    mat, g, H, theta = _beads(), 9.81, 0.02, 25.0
+    z = np.linspace(0.0, H, 401)
+    u = references.inclined_plane_velocity(mat, theta, H, g, z)
+    wide = references.inclined_plane_velocity_between_walls(mat, theta, H, g, 1e6, 0.2, z)
+    np.testing.assert_allclose(wide, u, atol=1e-5 * u[-1])
+    dense = dataclasses.replace(mat, phi_min=mat.phi_max - 1e-9)  # phi(I) constant
+    width, mu_w = 0.02, 0.15
+    zeta_f = width * (np.tan(np.radians(theta)) - mat.mu_s) / mu_w
+    assert 0.3 * H < zeta_f < 0.7 * H
+    narrow = references.inclined_plane_velocity_between_walls(dense, theta, H, g, width, mu_w, z)
+    resting, flowing = z < H - zeta_f - 0.01 * H, z > H - zeta_f + 0.01 * H
+    assert np.all(narrow[resting] < 1e-9 * narrow[-1]) and np.all(np.diff(narrow[flowing]) > 0)
+    # the shear rate at each depth is the closed form's: I from mu(I) = tan(theta) - mu_w zeta / W
+    zeta = H - z[flowing]
+    friction = np.tan(np.radians(theta)) - mu_w * zeta / width
+    I = mat.I_0 * (friction - mat.mu_s) / (dense.mu_2 - friction)
+    rate = I * np.sqrt(dense.phi_max * g * np.cos(np.radians(theta)) * zeta) / mat.d0
+    np.testing.assert_allclose(np.gradient(narrow, z)[flowing][2:-2], rate[2:-2], rtol=0.02)
