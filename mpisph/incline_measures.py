@@ -10,9 +10,9 @@ import numpy as np
 
 from . import measure
 from .references import (inclined_plane_flow_depth, inclined_plane_mean_velocity_with_viscosity,
-                         inclined_plane_surface_velocity, inclined_plane_velocity,
-                         inclined_plane_velocity_between_walls, inclined_plane_velocity_with_viscosity,
-                         pair_viscosity_of_alpha)
+                         inclined_plane_inertial_number_between_walls, inclined_plane_surface_velocity,
+                         inclined_plane_velocity, inclined_plane_velocity_between_walls,
+                         inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
 from .tensors import unpacked
 
 
@@ -22,21 +22,37 @@ def flow_depth(p, material):
     return inclined_plane_flow_depth(material, p["theta"], p["H"])
 
 
+def side_walls_of(p):
+    """(width, mu_w) of the run's side walls, or None without them."""
+    if p.get("channel_width", 0.0) > 0:
+        return p["channel_width"], math.tan(math.radians(p["wall_friction_deg"]))
+    return None
+
+
 def analytical_velocity(p, material, z):
     """The uniform flow's u at the heights ``z`` (clipped to the flow depth): between the run's side
     walls when it has them (``channel_width`` > 0), else 004_'s."""
     theta, H, g = p["theta"], flow_depth(p, material), p["g"]
     z = np.clip(np.asarray(z, dtype=float), 0.0, H)
-    if p.get("channel_width", 0.0) > 0:
-        mu_w = math.tan(math.radians(p["wall_friction_deg"]))
-        return inclined_plane_velocity_between_walls(material, theta, H, g, p["channel_width"], mu_w, z)
+    if side_walls_of(p):
+        return inclined_plane_velocity_between_walls(material, theta, H, g, *side_walls_of(p), z)
     return inclined_plane_velocity(material, theta, H, g, z)
+
+
+def analytical_inertial_number(p, material, z):
+    """The uniform flow's I at the heights ``z`` (clipped to the flow depth): I_u of mu(I_u) =
+    tan(theta) at every depth without side walls."""
+    theta, H, g = p["theta"], flow_depth(p, material), p["g"]
+    if side_walls_of(p):
+        z = np.clip(np.asarray(z, dtype=float), 0.0, H)
+        return inclined_plane_inertial_number_between_walls(material, theta, H, g, *side_walls_of(p), z)
+    return np.full(np.shape(z), material.uniform_flow(theta)[0])
 
 
 def analytical_mean(p, material):
     """The mean of ``analytical_velocity`` over the flow depth: 3/5 of the surface speed of 004_'s
     u(z) ~ H^(3/2) - (H - z)^(3/2)."""
-    if p.get("channel_width", 0.0) > 0:
+    if side_walls_of(p):
         return float(analytical_velocity(p, material, np.linspace(0.0, flow_depth(p, material), 2001)).mean())
     return 0.6 * inclined_plane_surface_velocity(material, p["theta"], flow_depth(p, material), p["g"])
 

@@ -177,7 +177,7 @@ def pair_viscosity_of_alpha(alpha, h, c0, dim):
 
 
 def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, samples=4001):
-    """(height, speed, pressure) from the bed up of the steady uniform mu(I) layer with a Newtonian
+    """(height, speed, pressure, inertial number) from the bed up of the steady uniform mu(I) layer with a Newtonian
     kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``) or between side
     walls (``wall_rate`` = 2 mu_w / W, ``inclined_plane_velocity_between_walls``)."""
     m = material.params
@@ -207,7 +207,7 @@ def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, samples=4001
     lost = -np.diff(p)
     height = np.concatenate(([0.0], np.cumsum(0.5 * (dz_dp[1:] + dz_dp[:-1]) * lost)))
     speed = np.concatenate(([0.0], np.cumsum(0.5 * (du_dp[1:] + du_dp[:-1]) * lost)))
-    return height, speed, p
+    return height, speed, p, I
 
 
 def inclined_plane_velocity_with_viscosity(material, theta_deg, H, g, nu, z):
@@ -222,14 +222,14 @@ def inclined_plane_velocity_with_viscosity(material, theta_deg, H, g, nu, z):
     then gamma_dot = I sqrt(p / rho_s0) / d and dp/dz = -phi(I) rho_s0 g cos(theta); u(z) is
     gamma_dot integrated from the bed. nu = 0 gives ``inclined_plane_velocity``. Heights above the
     layer's top take the top's speed. Grains incompressible, as there."""
-    height, speed, _ = _uniform_flow(material, theta_deg, H, g, nu=nu)
+    height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, nu=nu)
     return np.interp(np.asarray(z, dtype=float), height, speed)
 
 
 def inclined_plane_mean_velocity_with_viscosity(material, theta_deg, H, g, nu):
     """The mass-weighted mean of ``inclined_plane_velocity_with_viscosity`` over the layer (the
     mean over its pressure, dp being the mass per area times g cos(theta))."""
-    _, speed, p = _uniform_flow(material, theta_deg, H, g, nu=nu)
+    _, speed, p, _ = _uniform_flow(material, theta_deg, H, g, nu=nu)
     return float(np.sum(0.5 * (speed[1:] + speed[:-1]) * -np.diff(p)) / p[0])
 
 
@@ -245,8 +245,14 @@ def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w
     down to the depth where it reaches mu(0): below it the grains rest (mpisph's derivation after Jop
     et al.'s). u(z) is gamma_dot = I sqrt(p / rho_s0) / d integrated from the bed, p the weight above
     at phi(I) of Eq. 8. Grains incompressible, as there."""
-    height, speed, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width)
+    height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width)
     return np.interp(np.asarray(z, dtype=float), height, speed)
+
+
+def inclined_plane_inertial_number_between_walls(material, theta_deg, H, g, width, mu_w, z):
+    """The inertial number I(z) of ``inclined_plane_velocity_between_walls``: 0 where the grains rest."""
+    height, _, _, I = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width)
+    return np.interp(np.asarray(z, dtype=float), height, I)
 
 
 def inclined_plane_pressure(material, theta_deg, H, g, z):

@@ -8,10 +8,12 @@ hydrostatic one (the grains' p, and s p, the share the pairs carry: see below); 
 speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it averages
 the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
 bed and prints, per layer: speed over the analytical u(z) of the flow depth
-(incline_measures.flow_depth), the shear rate 2 eps_xy over the analytical I_u sqrt(p_h / rho_s0) / d,
-pressure over p_h (the weight of the grains above the layer's mean height, incline_measures.weight_above), the friction mu(I) of the particles over
-tan(theta), I over I_u (means of nonlinear functions of each particle's p, so biased where p
-scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
+(incline_measures.flow_depth; between the run's side walls, if it has them, their uniform flow), the
+shear rate 2 eps_xy over the analytical I_a sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of
+the grains above the layer's mean height, incline_measures.weight_above), the friction mu(I) of the
+particles over mu(I_a), I over I_a (I_a the analytical inertial number at the layer's height, I_u
+without side walls, where mu(I_u) = tan(theta); means of nonlinear functions of each particle's p, so
+biased where p scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
 A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
 pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
 viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
@@ -20,7 +22,8 @@ step, not of those the kick solved for), and the script also splits the shear an
 traction across the planes between the layers into the pressure pairs (with
 pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
 momentum the particles carry across (m u' v', m v' v'), each over the weight's component along the
-slope and normal to it: in a steady layer each three add up to 1. A table of the viscous stress's
+slope (less what side walls hold of the part above) and normal to it: in a steady layer each three
+add up to 1. A table of the viscous stress's
 normal part follows (bulk_table): the bulk viscosity that 2 eta eps gives the grains carries a mean
 stress where eta and the grains' change of volume correlate, and the corrected gradient's trace,
 unlike the uncorrected one's and the continuity equation's divergence, has a mean in a sheared layer. Frames must be close in
@@ -33,14 +36,14 @@ import math
 import numpy as np
 
 from mpisph.case import case_of_frame
-from mpisph.incline_measures import (carried_pressure, flow_depth, hydrostatic, kernel_moment, layer_speeds,
-                                     profile_figures, weight_above, with_artificial_viscosity)
+from mpisph.incline_measures import (analytical_inertial_number, analytical_velocity, carried_pressure, flow_depth,
+                                     hydrostatic, kernel_moment, layer_speeds, profile_figures, side_walls_of,
+                                     weight_above, with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i_law import friction
 from mpisph.physics.viscous_stress import strain_rate
-from mpisph.references import inclined_plane_velocity
 
 
 def per_layer(frames, dp, of_frame):
@@ -57,11 +60,12 @@ def per_layer(frames, dp, of_frame):
 
 
 def layer_table(frames, p, material):
-    """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/tan, I/I_u, s, A_xy, alignment)
-    averaged over ``frames``; u/u_a is nan for a layer centred on the bed, where u_a = 0; the
-    alignment is the layer's mean 2 eps_xy over its mean gamma_dot, the law's strain rate."""
-    dp, theta, g = p["dp"], math.radians(p["theta"]), p["g"]
-    I_u, _ = material.uniform_flow(p["theta"])
+    """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/mu_a, I/I_a, s, A_xy, alignment)
+    averaged over ``frames``, the analytical ones of the uniform flow at the layer's height
+    (incline_measures: without side walls mu_a = tan(theta) and I_a = I_u at every depth); u/u_a is nan
+    where u_a = 0, on the bed or where the walls hold the grains at rest; the alignment is the layer's
+    mean 2 eps_xy over its mean gamma_dot, the law's strain rate."""
+    dp = p["dp"]
 
     def of_frame(f):
         y = f["x"][:, 1]
@@ -74,11 +78,11 @@ def layer_table(frames, p, material):
 
     rows = []
     for centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot in per_layer(frames, dp, of_frame):
-        depth = flow_depth(p, material)
-        u_a = inclined_plane_velocity(material, p["theta"], depth, g, min(max(centre, 0.0), depth))
-        rate_a = I_u * math.sqrt(p_h / material.rho_s0) / material.d0
+        u_a = float(analytical_velocity(p, material, centre))
+        I_a = float(analytical_inertial_number(p, material, centre))
+        rate_a = I_a * math.sqrt(p_h / material.rho_s0) / material.d0
         rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, carried / p_h,
-                     mu / math.tan(theta), I / I_u, share, A_xy, rate / gamma_dot))
+                     mu / friction(I_a, material.params), I / I_a, share, A_xy, rate / gamma_dot))
     return rows
 
 
@@ -166,7 +170,8 @@ def bulk_table(frames, p):
 def traction_table(frames, p):
     """Rows (plane height, then for the shear and for the normal traction on the part above each plane
     between layers: that of the pressure pairs, of the viscous pairs and of the momentum carried
-    across, each over the weight's component along the slope, then normal to it)."""
+    across, each over the weight's component along the slope less the side walls' friction on that
+    part, then over the weight's component normal to it)."""
     dp, theta, length = p["dp"], math.radians(p["theta"]), p["columns"] * p["dp"]
     kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
     planes = np.arange(1, int(p["H"] / dp)) * dp
@@ -193,6 +198,10 @@ def traction_table(frames, p):
         counts = np.bincount(layer)
         v = f["v"] - np.stack([np.bincount(layer, f["v"][:, c]) / counts for c in (0, 1)], axis=1)[layer]
         normal_weight = weight_above(f, p, planes)
+        # what the side walls hold of the part above each plane, 2 mu_w / W sum V p (physics/side_walls.py)
+        walls = side_walls_of(p)
+        held = [] if walls is None else [2.0 * walls[1] / walls[0] * np.sum((m * np.maximum(pressure, 0.0) / rho)[
+            x[:, 1] > Y]) / length for Y in planes]
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]
@@ -202,7 +211,8 @@ def traction_table(frames, p):
             # normal to the slope) from below
             shear = [-a[across].sum() / length for a in on_i[0]] + [-flux[0]]
             normal = [a[across].sum() / length for a in on_i[1]] + [flux[1]]
-            sums[n] += np.array(shear + normal) / np.repeat([normal_weight[n] * math.tan(theta), normal_weight[n]], 3)
+            along = normal_weight[n] * math.tan(theta) - (held[n] if held else 0.0)
+            sums[n] += np.array(shear + normal) / np.repeat([along, normal_weight[n]], 3)
     return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
 
 
@@ -234,7 +244,7 @@ def main():
               f"uniform flow with it added has {mean:.3f} of the analytical mean speed and {surface:.3f} of the "
               f"surface speed; the {len(frames)} frames' mean over it {speeds[0] / mean:.3f}, surface "
               f"{speeds[1] / surface:.3f}")
-    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/tan':>6} {'I/I_u':>6} "
+    print(f"{'y [mm]':>7} {'u/u_a':>6} {'rate/a':>6} {'p/p_h':>6} {'sp/p_h':>6} {'mu/mu_a':>7} {'I/I_a':>6} "
           f"{'s':>6} {'A_xy':>6} {'align':>6}")
     for row in layer_table(frames, p, material):
         print(f"{1e3 * row[0]:7.2f}" + "".join(f" {v:6.3f}" for v in row[1:]))
