@@ -93,5 +93,8 @@ def side_walls(p, height):
     if p.channel_width < 0 or not 0 <= p.wall_friction_deg < 90:
         raise InputError(f"side walls need channel_width > 0 and wall_friction_deg in [0, 90), not "
                          f"{p.channel_width} m and {p.wall_friction_deg} deg")
+    if p.law_pressure == "carried":
+        raise InputError("side walls take the law's pressure, which law_pressure=carried does not keep: use "
+                         "carried_mean or state")
     return [SideWallFriction(p.channel_width, math.tan(math.radians(p.wall_friction_deg)),
                              0.01 * math.sqrt(p.g * height))]

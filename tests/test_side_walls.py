@@ -1,6 +1,7 @@
 """The side walls' Coulomb friction on a plane-strain granular flow (physics/side_walls.py): the
-acceleration of one particle by hand, and a sheet on a free-slip floor (tests/cases/walled_sheet.py)
-that loses to the walls exactly the momentum their friction takes."""
+acceleration of one particle by hand, a sheet on a free-slip floor (tests/cases/walled_sheet.py)
+that loses to the walls exactly the momentum their friction takes, of the grains' pressure or, with
+law_pressure = carried_mean, of the law's."""
 
 import math
 from pathlib import Path
@@ -42,37 +43,43 @@ def test_no_friction_in_tension_nor_on_walls():
 
 @pytest.fixture(scope="module")
 def sheets(tmp_path_factory):
-    """The sheet without side walls and between walls its own depth apart (friction angle 20 deg)."""
+    """The sheet without side walls, and between walls its own depth apart (friction angle 20 deg)
+    with the law taking the grains' pressure (law_pressure = state) or the kernel mean of the
+    carried one (carried_mean)."""
     out = {}
-    for width in (0.0, 0.00972):
-        out[width] = tmp_path_factory.mktemp(f"sheet_{width}")
-        r = mpisph([SHEET, "--set", f"channel_width={width}", "wall_friction_deg=20", "output_interval=0.001",
-                    "--out", out[width], "--quiet"], ranks=1)
+    for width, law in ((0.0, "state"), (0.00972, "state"), (0.00972, "carried_mean")):
+        out[width, law] = tmp_path_factory.mktemp(f"sheet_{width}_{law}")
+        r = mpisph([SHEET, "--set", f"channel_width={width}", "wall_friction_deg=20", f"law_pressure={law}",
+                    "output_interval=0.001", "--out", out[width, law], "--quiet"], ranks=1)
         assert r.returncode == 0, r.stderr
     return out
 
 
 def test_without_side_walls_nothing_takes_the_sheets_momentum(sheets):
-    momentum = read_diagnostics(sheets[0.0] / "diagnostics.csv")["momentum_x"]
+    momentum = read_diagnostics(sheets[0.0, "state"] / "diagnostics.csv")["momentum_x"]
     np.testing.assert_allclose(momentum, momentum[0], rtol=1e-12)
 
 
-def test_the_walls_take_the_momentum_of_their_friction(sheets):
+@pytest.mark.parametrize("law, pressure", [("state", "p"), ("carried_mean", "law_pressure")])
+def test_the_walls_take_the_momentum_of_their_friction(sheets, law, pressure):
     """Every grain moves along +x faster than the regularising speed, so the walls take
-    2 mu_w / W sum_i V_i p_i per unit time: its integral over the frames is the momentum lost."""
-    frames = [read_frame(f) for f in list_frames(sheets[0.00972])]
+    2 mu_w / W sum_i V_i p_i per unit time, p the law's pressure: its integral over the frames is the
+    momentum lost (the grains' p, 6 % above the carried pressure here, would miss it)."""
+    frames = [read_frame(f) for f in list_frames(sheets[0.00972, law])]
     assert all(f["v"][f["kind"] == MOVING, 0].min() > 0.9 for f in frames)
     rate = 2.0 * math.tan(math.radians(20.0)) / 0.00972
-    force = [-rate * np.sum((f["mass"] * f["p"] / f["rho"])[f["kind"] == MOVING]) for f in frames]
+    force = [-rate * np.sum((f["mass"] * f[pressure] / f["rho"])[f["kind"] == MOVING]) for f in frames]
     impulse = np.trapezoid(force, [f["t"] for f in frames])
-    momentum = read_diagnostics(sheets[0.00972] / "diagnostics.csv")["momentum_x"]
+    momentum = read_diagnostics(sheets[0.00972, law] / "diagnostics.csv")["momentum_x"]
     assert momentum[-1] - momentum[0] == pytest.approx(impulse, rel=0.01)
     assert impulse < -0.07 * momentum[0]  # the friction is not negligible: 7 % of the momentum in 0.02 s
 
 
-@pytest.mark.parametrize("setting", ["channel_width=-0.1", "wall_friction_deg=90"])
-def test_bad_side_walls_are_one_line_errors(tmp_path, setting):
+@pytest.mark.parametrize("setting, words", [("channel_width=-0.1", "side walls need"),
+                                            ("wall_friction_deg=90", "side walls need"),
+                                            ("law_pressure=carried", "does not keep")])
+def test_bad_side_walls_are_one_line_errors(tmp_path, setting, words):
     r = mpisph([SHEET, "--set", "channel_width=0.1", setting, "--out", tmp_path, "--quiet"], ranks=1)
     assert r.returncode == 2
     lines = stderr_lines(r.stderr)
-    assert len(lines) == 1 and "side walls need" in lines[0]
+    assert len(lines) == 1 and words in lines[0]

@@ -2,10 +2,17 @@
 narrow across the plane of the run), after Jop, Forterre & Pouliquen (2005; 004_ ref. [25]).
 
 Across the gap the walls carry the shear stress mu_w sigma_w against the grains' velocity, with
-sigma_w the normal stress on them taken as the grains' pressure p (Jop et al.'s closure). Averaged
-over the width, two walls give the body force 2 mu_w p / W per unit volume, so the acceleration
+sigma_w the normal stress on them taken as the pressure p of the friction law mu(I) p (Jop et al.'s
+closure). Averaged over the width, two walls give the body force 2 mu_w p / W per unit volume, so
+the acceleration
 
     a_i = -(2 mu_w p_i / (rho_i W)) v_i / max(|v_i|, v_reg).
+
+p_i is the pressure the mu(I) law takes: the field ``law_pressure`` where the scheme keeps one
+(law_pressure = carried_mean: the kernel mean of the pressure s p that the pairs carry, the
+continuum's pressure in that discretisation, physics/mu_i.py), else the grains' p of Eq. 41
+(law_pressure = state). granular_flow.side_walls refuses law_pressure = carried, whose s p is not
+kept.
 
 Above v_reg this is Coulomb's law, of constant magnitude against the motion; below it the friction
 falls linearly to zero with the speed, which keeps the explicit step stable where the grains stop
@@ -50,4 +57,5 @@ class SideWallFriction(ForceTerm):
 
     def add(self, ctx, acc):
         pa = ctx.particles
-        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, pa.p, pa.rho, self.rate, self.v_reg, acc)
+        pressure = pa.law_pressure if "law_pressure" in pa.arrays else pa.p
+        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, pressure, pa.rho, self.rate, self.v_reg, acc)
