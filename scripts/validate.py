@@ -32,6 +32,7 @@ VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remed
                "inclined_plane": incline.inclined_plane, "inclined_plane_steady": incline.inclined_plane_steady,
                "inclined_plane_deep": incline.inclined_plane_deep,
                "inclined_plane_deep_fine": incline.inclined_plane_deep_fine,
+               "inclined_plane_walls": incline.inclined_plane_walls,
                "lube_collapse_2d": lube_planar.lube_collapse_2d,
                "lube_collapse_2d_convergence": lube_planar.lube_collapse_2d_convergence,
                "lube_collapse_3d": lube_axisymmetric.lube_collapse_3d,

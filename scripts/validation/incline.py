@@ -12,15 +12,16 @@ from .figures import save
 from .runs import run
 
 
-def _incline_panels(material, theta, H, g):
+def _incline_panels(params, material):
     """A figure of three panels for a layer down a slope: the speed profile with the analytical one of
-    the flow depth H (references.inclined_plane_flow_depth), the pressure profile, the mean speed
-    against time with the analytical mean."""
+    the flow depth (incline_measures.flow_depth; between the run's side walls if it has them), the
+    pressure profile, the mean speed against time with the analytical mean."""
     fig, ax = plt.subplots(1, 3, figsize=(15, 5))
-    z = np.linspace(0.0, H, 101)
-    ax[0].plot(references.inclined_plane_velocity(material, theta, H, g, z), z, "k--", label="analytical")
-    ax[2].axhline(0.6 * references.inclined_plane_surface_velocity(material, theta, H, g), color="k", ls="--",
-                  lw=0.8, label="analytical mean")
+    z = np.linspace(0.0, incline_measures.flow_depth(params, material), 101)
+    walls = ", between the side walls" if incline_measures.side_walls_of(params) else ""
+    ax[0].plot(incline_measures.analytical_velocity(params, material, z), z, "k--", label="analytical" + walls)
+    ax[2].axhline(incline_measures.analytical_mean(params, material), color="k", ls="--", lw=0.8,
+                  label="analytical mean" + walls)
     return fig, ax
 
 
@@ -45,7 +46,7 @@ def inclined_plane(ranks):
     material = build_case(module, params).material
     depth = references.inclined_plane_flow_depth(material, theta, H)
     u_s = references.inclined_plane_surface_velocity(material, theta, depth, g)
-    fig, ax = _incline_panels(material, theta, depth, g)
+    fig, ax = _incline_panels(params, material)
     z = np.linspace(0.0, depth, 101)
     ax[1].plot(references.inclined_plane_pressure(material, theta, depth, g, z), z, "k--", label="hydrostatic")
     rows, cmd = [], None
@@ -123,7 +124,7 @@ def _steady_incline(ranks, name, sets, t_end, steady, interval, alphas):
     depth = incline_measures.flow_depth(params, material)
     T = references.inclined_plane_relaxation_time(material, theta, depth, g)
     span = f"{steady:g}-{t_end:g} s"
-    fig, ax = _incline_panels(material, theta, depth, g)
+    fig, ax = _incline_panels(params, material)
     rows, cmd = [], None
     for alpha in alphas:
         frames, diag, shown = run(name + (f"_alpha{alpha:g}" if alpha else ""), "inclined_plane",
@@ -170,8 +171,9 @@ def _steady_incline(ranks, name, sets, t_end, steady, interval, alphas):
         ax[1].plot(np.mean(weight, axis=0), height, "--", label=f"weight of the grains above, {label}")
         ax[1].plot(np.mean(share, axis=0), height, "o-", ms=3, label=f"s p, the pressure the pairs carry, {label}")
         ax[2].plot(diag["t"], speed, label=f"mpisph, {label}")
-    rows.append((f"relaxation time T at H = {H:g} m [s] (references.inclined_plane_relaxation_time)", f"{T:.2f}",
-                 "-", "-", "-"))
+    if not incline_measures.side_walls_of(params):
+        rows.append((f"relaxation time T at H = {H:g} m [s] (references.inclined_plane_relaxation_time)",
+                     f"{T:.2f}", "-", "-", "-"))
     _finish_incline_panels(ax, "pressure [Pa]")
     return cmd, rows, save(fig, f"{name}.png")
 
@@ -257,3 +259,21 @@ def inclined_plane_deep_fine(ranks):
         "vary along the slope, and the periodic length is 16 spacings there as here. Figures are means over "
         "the frames from 60 s (4 T), every 0.25 s.")
     return ("Inclined plane at its steady state, H = 0.1 m at dp = 2 mm (004_ Sec. 5.1)", *section)
+
+
+def inclined_plane_walls(ranks):
+    """The CI-sized layer of ``inclined_plane_steady`` (H = 0.02 m, H/dp = 20) in a channel 0.08 m
+    wide whose side walls hold it back with mu_w = 0.15 (physics/side_walls.py), against Jop et al.'s
+    uniform flow between walls (references.inclined_plane_velocity_between_walls): speeds, profile
+    and pressure averaged over the frames from 8 s."""
+    sets = ["H=0.02", "dp=0.001", "columns=32", "m_0=0.2", "channel_width=0.08", "wall_friction_deg=8.53",
+            "density_reinit=inner", *CONSISTENT_MU_I]
+    cmd, rows, image = _steady_incline(ranks, "inclined_plane_walls", sets, 12.0, 8.0, 0.05, (0.0,))
+    note = ("Not a case of the papers: a check of the side walls' friction (mpisph's, after Jop, Forterre & "
+            "Pouliquen 2005, 004_ ref. 25), held to issue 14's tolerances for the incline. The walls take "
+            "2 mu_w p / W per unit volume against the motion, p the law's pressure (with law_pressure = "
+            "carried_mean the kernel mean of s p, the pressure the pairs carry), so the law's friction falls "
+            "with depth, mu(I) = tan(theta) - (2 mu_w / (W p)) int p dzeta (tan(theta) - mu_w zeta / W at "
+            "constant phi): here from tan(25 deg) = 0.466 at the surface to 0.429 at the bed, and the surface "
+            "speed is 0.65 of the plane-strain layer's. The options are inclined_plane_steady's. " + OPTIONS_NOTE)
+    return "Inclined plane between side walls, H = 0.02 m (after Jop et al. 2005)", cmd, rows, image, note
