@@ -274,6 +274,7 @@ def inclined_plane_walls(ranks):
             "2 mu_w p / W per unit volume against the motion, p the law's pressure (with law_pressure = "
             "carried_mean the kernel mean of s p, the pressure the pairs carry), so the law's friction falls "
             "with depth, mu(I) = tan(theta) - (2 mu_w / (W p)) int p dzeta (tan(theta) - mu_w zeta / W at "
-            "constant phi): here from tan(25 deg) = 0.466 at the surface to 0.429 at the bed, and the surface "
-            "speed is 0.65 of the plane-strain layer's. The options are inclined_plane_steady's. " + OPTIONS_NOTE)
+            "constant phi): here from tan(25 deg) = 0.466 at the surface to 0.428 at the bed (I from 0.133 to "
+            "0.060), and the surface speed is 0.65 of the plane-strain layer's. The options are "
+            "inclined_plane_steady's. " + OPTIONS_NOTE)
     return "Inclined plane between side walls, H = 0.02 m (after Jop et al. 2005)", cmd, rows, image, note
