@@ -8,7 +8,8 @@ sand (004_ Eq. 7), whatever its depth: the grip of the discretised floor on
 a layer a few particles deep is what this case measures (docs/COLLAPSES.md;
 the mean speed is momentum_x / mass of diagnostics.csv). The sand and its
 K_t and tau_0 are those of the planar column of height ``H_0``
-(granular_column.py).
+(granular_column.py). With ``floor=free_slip`` and side walls
+(``channel_width``) only the walls hold the sheet back (tests/test_side_walls.py).
 """
 
 import math
@@ -26,6 +27,8 @@ PARAMS = {
     "H_0": Param(0.1944, "m", "height of the column whose sand this is (K_t, tau_0): lube_collapse_2d at a = 2",
                  positive=True),
     "columns": Param(16, "-", "particles along the periodic x (its length is columns * dp)", positive=True),
+    "floor": Param("no_slip", "-", "the floor: no_slip, the collapses' rough floor, or free_slip, along which "
+                   "nothing but side walls (if any) holds the sheet", choices=("no_slip", "free_slip")),
     **{k: v for k, v in column_params(a=2.0, dp=0.00243, m_0=1.2).items() if k != "a"},
     **side_wall_params(),
     "t_end": Param(0.25, "s", "simulated end time", positive=True),
@@ -48,7 +51,8 @@ def setup(p):
         **mu_i_scheme(p),
         bodies=[Body("sheet", sheet, velocity=np.array([p.U, 0.0]),
                      pressure=lambda x: material.rho0 * p.g * (top - x[:, 1]))],
-        walls=[Wall("floor", bed_layers((0.0,), (length,), p.dp, layers), distance=depth)],
+        walls=[Wall("floor", bed_layers((0.0,), (length,), p.dp, layers), slip=p.floor == "free_slip",
+                    distance=depth)],
         gravity=(0.0, -p.g),
         u_ref=math.sqrt(p.g * p.H_0),
         density_reinit=p.density_reinit,

@@ -1,11 +1,9 @@
 """The side walls' Coulomb friction on a plane-strain granular flow (physics/side_walls.py): the
-acceleration of one particle by hand, a sheet on a free-slip floor (tests/cases/walled_sheet.py)
-that loses to the walls exactly the momentum their friction takes, of the grains' pressure or, with
+acceleration of one particle by hand, a sheet on a free-slip floor (the case sliding_sheet) that
+loses to the walls exactly the momentum their friction takes, of the grains' pressure or, with
 law_pressure = carried_mean, of the law's."""
 
 import math
-from pathlib import Path
-
 import numpy as np
 import pytest
 
@@ -15,7 +13,7 @@ from mpisph.particles import MOVING, WALL
 from mpisph.physics.side_walls import add_side_wall_friction
 from mpirun import mpisph, stderr_lines
 
-SHEET = str(Path(__file__).parent / "cases" / "walled_sheet.py")
+SHEET = ["sliding_sheet", "--t-end", "0.02", "--set", "floor=free_slip", "columns=8"]  # --set words follow
 RATE = 2.0 * 0.4 / 0.1  # 2 mu_w / W
 
 
@@ -49,8 +47,8 @@ def sheets(tmp_path_factory):
     out = {}
     for width, law in ((0.0, "state"), (0.00972, "state"), (0.00972, "carried_mean")):
         out[width, law] = tmp_path_factory.mktemp(f"sheet_{width}_{law}")
-        r = mpisph([SHEET, "--set", f"channel_width={width}", "wall_friction_deg=20", f"law_pressure={law}",
-                    "output_interval=0.001", "--out", out[width, law], "--quiet"], ranks=1)
+        r = mpisph([*SHEET, f"channel_width={width}", "wall_friction_deg=20", f"law_pressure={law}",
+                    "--output-interval", "0.001", "--out", out[width, law], "--quiet"], ranks=1)
         assert r.returncode == 0, r.stderr
     return out
 
@@ -79,7 +77,7 @@ def test_the_walls_take_the_momentum_of_their_friction(sheets, law, pressure):
                                             ("wall_friction_deg=90", "side walls need"),
                                             ("law_pressure=carried", "does not keep")])
 def test_bad_side_walls_are_one_line_errors(tmp_path, setting, words):
-    r = mpisph([SHEET, "--set", "channel_width=0.1", setting, "--out", tmp_path, "--quiet"], ranks=1)
+    r = mpisph([*SHEET, "channel_width=0.1", setting, "--out", tmp_path, "--quiet"], ranks=1)
     assert r.returncode == 2
     lines = stderr_lines(r.stderr)
     assert len(lines) == 1 and words in lines[0]
