@@ -13,10 +13,10 @@ shear rate 2 eps_xy over the analytical I_a sqrt(p_h / rho_s0) / d, pressure ove
 the grains above the layer's mean height, incline_measures.weight_above), the friction mu(I) of the
 particles over mu(I_a), I over I_a (I_a the analytical inertial number at the layer's height, I_u
 without side walls, where mu(I_u) = tan(theta); means of nonlinear functions of each particle's p, so
-biased where p scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the frames hold the correction matrix B (000_ Eq. 24), the kernel moment
-A = B^-1 = -sum_j V_j r_ij (x) grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the
-pairs carry, with s p over p_h, and its shear component A_xy (docs/INCLINE.md). With
-viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
+biased where p scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the
+frames hold the correction matrix B (000_ Eq. 24), the kernel moment A = B^-1 = -sum_j V_j r_ij (x)
+grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the pairs carry, with s p over p_h,
+and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
 sum uses (with viscous_step=implicit: the stress of the velocities predicted to the middle of the
 step, not of those the kick solved for), and the script also splits the shear and the normal
 traction across the planes between the layers into the pressure pairs (with
