@@ -5,29 +5,29 @@
 Prints the mean speed and the surface speed over the analytical ones in each of the last five
 frames, with the profile's L2 error over dp-thick layers and the layers' mean pressure over the
 hydrostatic one (the grains' p, and s p, the share the pairs carry: see below); with alpha > 0, the
-speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it averages
-the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above the
-bed and prints, per layer: speed over the analytical u(z) of the flow depth
+speeds over those of the uniform flow with Eq. 38's shear viscosity added (references). Then it
+averages the last ``--frames`` frames of a run of the case inclined_plane over dp-thick layers above
+the bed and prints, per layer: speed over the analytical u(z) of the flow depth
 (incline_measures.flow_depth; between the run's side walls, if it has them, their uniform flow), the
 shear rate 2 eps_xy over the analytical I_a sqrt(p_h / rho_s0) / d, pressure over p_h (the weight of
 the grains above the layer's mean height, incline_measures.weight_above), the friction mu(I) of the
 particles over mu(I_a), I over I_a (I_a the analytical inertial number at the layer's height, I_u
-without side walls, where mu(I_u) = tan(theta); means of nonlinear functions of each particle's p, so
-biased where p scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the
+without side walls, where mu(I_u) = tan(theta); means of nonlinear functions of each particle's p,
+so biased where p scatters), the alignment 2 eps_xy / gamma_dot of the layer's means, and, where the
 frames hold the correction matrix B (000_ Eq. 24), the kernel moment A = B^-1 = -sum_j V_j r_ij (x)
 grad W_ij: its share s = tr(A) / 2 of an isotropic stress that the pairs carry, with s p over p_h,
-and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the frames hold the viscous stress T = 2 eta eps B that the momentum
-sum uses (with viscous_step=implicit: the stress of the velocities predicted to the middle of the
-step, not of those the kick solved for), and the script also splits the shear and the normal
-traction across the planes between the layers into the pressure pairs (with
-pressure_form=isotropic, those of the stress T_pressure the frames hold), the viscous pairs and the
-momentum the particles carry across (m u' v', m v' v'), each over the weight's component along the
-slope (less what side walls hold of the part above) and normal to it: in a steady layer each three
-add up to 1. A table of the viscous stress's
-normal part follows (bulk_table): the bulk viscosity that 2 eta eps gives the grains carries a mean
-stress where eta and the grains' change of volume correlate, and the corrected gradient's trace,
-unlike the uncorrected one's and the continuity equation's divergence, has a mean in a sheared layer. Frames must be close in
-time (an output interval of about 0.05 s) for the averages to settle.
+and its shear component A_xy (docs/INCLINE.md). With viscous_form=corrected_stress the frames hold
+the viscous stress T = 2 eta eps B that the momentum sum uses (with viscous_step=implicit: the
+stress of the velocities predicted to the middle of the step, not of those the kick solved for), and
+the script also splits the shear and the normal traction across the planes between the layers into
+the pressure pairs (with pressure_form=isotropic, those of the stress T_pressure the frames hold),
+the viscous pairs and the momentum the particles carry across (m u' v', m v' v'), each over the
+weight's component along the slope (less what side walls hold of the part above) and normal to it:
+in a steady layer each three add up to 1. A table of the viscous stress's normal part follows
+(bulk_table): the bulk viscosity that 2 eta eps gives the grains carries a mean stress where eta and
+the grains' change of volume correlate, and the corrected gradient's trace, unlike the uncorrected
+one's and the continuity equation's divergence, has a mean in a sheared layer. Frames must be close
+in time (an output interval of about 0.05 s) for the averages to settle.
 """
 
 import argparse
