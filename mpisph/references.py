@@ -176,10 +176,12 @@ def pair_viscosity_of_alpha(alpha, h, c0, dim):
     return alpha * h * c0 / (2.0 * (dim + 2))
 
 
-def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, samples=4001):
-    """(height, speed, pressure, inertial number) from the bed up of the steady uniform mu(I) layer with a Newtonian
-    kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``) or between side
-    walls (``wall_rate`` = 2 mu_w / W, ``inclined_plane_velocity_between_walls``)."""
+def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, regularised=False, samples=4001):
+    """(height, speed, pressure, inertial number) from the bed up of the steady uniform mu(I) layer
+    with a Newtonian kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``) or
+    between side walls (``wall_rate`` = 2 mu_w / W, ``inclined_plane_velocity_between_walls``), of
+    the friction law or, ``regularised``, of the regularised law the solver takes (Eqs. 46-55,
+    physics/mu_i_law.py; without nu)."""
     m = material.params
     tan, cos = np.tan(np.radians(theta_deg)), np.cos(np.radians(theta_deg))
     I_u, phi_u = material.uniform_flow(theta_deg)
@@ -193,15 +195,21 @@ def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, samples=4001
                                                              * depth_per_pressure[:-1]) * -np.diff(p))[::-1])[::-1],
                                            [0.0]))
         friction = tan - held / np.maximum(p, 1e-300)
-        lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0, walls: I <= I_u
-        for _ in range(100):  # bisection: the left side rises with I
+        if regularised:
+            from .physics.mu_i_law import regularised_shear_rates
+
+            I = regularised_shear_rates(friction * p, p, m) * material.d0 / np.maximum(root, 1e-300)
+        else:
+            lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0, walls: I <= I_u
+            for _ in range(100):  # bisection: the left side rises with I
+                I = 0.5 * (lo + hi)
+                a = I + m.I_s
+                excess = m.mu_s + (m.mu_2 - m.mu_s) * a / (a + m.I_0) - friction
+                excess += ((m.phi_max - (m.phi_max - m.phi_min) * I) * nu * I
+                           / (np.maximum(root, 1e-300) * material.d0))
+                lo, hi = np.where(excess < 0.0, I, lo), np.where(excess < 0.0, hi, I)
             I = 0.5 * (lo + hi)
-            a = I + m.I_s
-            excess = m.mu_s + (m.mu_2 - m.mu_s) * a / (a + m.I_0) - friction
-            excess += (m.phi_max - (m.phi_max - m.phi_min) * I) * nu * I / (np.maximum(root, 1e-300) * material.d0)
-            lo, hi = np.where(excess < 0.0, I, lo), np.where(excess < 0.0, hi, I)
-        I = 0.5 * (lo + hi)
-        phi = m.phi_max - (m.phi_max - m.phi_min) * I
+        phi = m.phi_max - (m.phi_max - m.phi_min) * np.minimum(I, 1.0)
     dz_dp = 1.0 / (phi * material.rho_s0 * g * cos)  # height gained per pressure lost upwards
     du_dp = I * root / material.d0 * dz_dp
     lost = -np.diff(p)
@@ -233,7 +241,7 @@ def inclined_plane_mean_velocity_with_viscosity(material, theta_deg, H, g, nu):
     return float(np.sum(0.5 * (speed[1:] + speed[:-1]) * -np.diff(p)) / p[0])
 
 
-def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w, z):
+def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w, z, regularised=False):
     """Steady uniform velocity u(z) of the mu(I) layer of ``inclined_plane_velocity`` (the same mass
     per area, phi_u rho_s0 H) in a channel ``width`` wide whose side walls hold it back with the
     friction coefficient ``mu_w`` (physics/side_walls.py; Jop, Forterre & Pouliquen 2005). The walls
@@ -244,8 +252,11 @@ def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w
 
     down to the depth where it reaches mu(0): below it the grains rest (mpisph's derivation after Jop
     et al.'s). u(z) is gamma_dot = I sqrt(p / rho_s0) / d integrated from the bed, p the weight above
-    at phi(I) of Eq. 8. Grains incompressible, as there."""
-    height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width)
+    at phi(I) of Eq. 8. Grains incompressible, as there. With ``regularised`` the law is the one the
+    solver takes, regularised below the yield stress (004_ Eqs. 46-55), under which the grains that
+    the walls would hold creep."""
+    height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width,
+                                        regularised=regularised)
     return np.interp(np.asarray(z, dtype=float), height, speed)
 
 

@@ -13,7 +13,8 @@ from mpisph.materials import MuIGranular
 from mpisph.physics.mu_i import momentum, pair_term_factors
 from mpisph.physics.viscous_stress import strain_rate, stress_divergence, viscous_force_tensor
 from mpisph.physics.mu_i_law import (MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT, friction, grain_density_ratio,
-                                     pair_viscosity, regularised_viscosity, residual_viscosity)
+                                     pair_viscosity, regularised_shear_rates, regularised_viscosity,
+                                     residual_viscosity)
 from mpisph.correction import correction_matrix
 from mpisph.tensors import size
 
@@ -125,6 +126,23 @@ def test_regularised_viscosity_at_rest_is_eq_53_and_table_2():
         assert regularised_viscosity(p, 1e-7, 0.0, m.rho_s0, m.d0, m) == pytest.approx(mat.eta_max(tau_y), rel=1e-6)
     # 004_ Table 2: eta_max = 190.3 Pa s at tau_0 = 190 Pa, m_0 = 1 s (Eq. 47 with mu_2/mu_s)
     assert mat.eta_max(mat.tau_0) == pytest.approx(references.INCLINED_PLANE_TABLE_2["eta_max"], abs=0.05)
+
+
+def test_regularised_shear_rate_carries_the_stress():
+    """The rate at which the regularised law carries a stress: far below the yield stress mu_s p it
+    creeps at tau / eta_max (at rates where m_0 gamma_dot << 1); well above it, where exp(-m_0 gamma_dot) is negligible, it flows at the
+    friction law's rate, mu(I) p = tau."""
+    m = beads(m_0=0.2).params
+    p = np.array([50.0, 50.0, 50.0, 2000.0])
+    tau = np.array([0.0, 0.02, 1.1, 1.1]) * m.mu_s * p
+    rates = regularised_shear_rates(tau, p, m)
+    assert rates[0] == 0.0
+    for k in (1, 2, 3):
+        I = rates[k] * m.d0 / math.sqrt(p[k] / m.rho_s0)
+        assert regularised_viscosity(p[k], rates[k], I, m.rho_s0, m.d0, m) * rates[k] == pytest.approx(tau[k], rel=1e-9)
+    assert rates[1] == pytest.approx(tau[1] / regularised_viscosity(p[1], 0.0, 0.0, m.rho_s0, m.d0, m), rel=0.05)
+    I = rates[3] * m.d0 / math.sqrt(p[3] / m.rho_s0)
+    assert m.m_0 * rates[3] > 20 and friction(I, m) * p[3] == pytest.approx(tau[3], rel=1e-6)
 
 
 def test_regularised_viscosity_stays_positive_where_eq_55_gives_negative_m_p():

@@ -154,3 +154,17 @@ def test_uniform_flow_between_side_walls():
     I = mat.I_0 * (friction - mat.mu_s) / (dense.mu_2 - friction)
     rate = I * np.sqrt(dense.phi_max * g * np.cos(np.radians(theta)) * zeta) / mat.d0
     np.testing.assert_allclose(np.gradient(narrow, z)[flowing][2:-2], rate[2:-2], rtol=0.02)
+
+
+def test_regularised_uniform_flow_between_walls():
+    """With the solver's regularised law the layer follows the friction law's flow where the walls
+    leave the grains well above their yield stress, and creeps where the walls would hold them."""
+    mat, g, H, theta = _beads(), 9.81, 0.02, 25.0
+    z = np.linspace(0.0, H, 201)
+    wide = [references.inclined_plane_velocity_between_walls(mat, theta, H, g, 0.08, 0.15, z, regularised=r)
+            for r in (False, True)]
+    np.testing.assert_allclose(wide[1], wide[0], rtol=0.03, atol=0.01 * wide[0][-1])
+    narrow = [references.inclined_plane_velocity_between_walls(mat, theta, H, g, 0.02, 0.15, z, regularised=r)
+              for r in (False, True)]
+    resting = z < 0.3 * H
+    assert np.all(narrow[0][resting] < 1e-9) and np.all(np.diff(narrow[1][resting]) > 0)

@@ -54,6 +54,7 @@ negative, where Eq. 55 alone gives m_p < 0 for tau_y below about eta_0/m_0.
 import math
 from collections import namedtuple
 
+import numpy as np
 from numba import njit
 
 # The material constants the numba loops take (materials.MuIGranular.params).
@@ -176,3 +177,28 @@ def pair_viscosity(factor, eta_i, eta_j, gamma_dot_i, gamma_dot_j, mean):
     if mean == MEAN_SECANT and gamma_dot_i + gamma_dot_j > 0.0:
         return factor * (eta_i * gamma_dot_i + eta_j * gamma_dot_j) / (gamma_dot_i + gamma_dot_j)
     return factor * 0.5 * (eta_i + eta_j)
+
+
+@njit(cache=True)
+def regularised_shear_rates(tau, p, m):
+    """The shear rates at which the regularised law (``regularised_viscosity``) of incompressible
+    grains (rho_s = rho_s0, d = d0) carries the shear stresses ``tau`` at the pressures ``p``: the root
+    of eta_hat(gamma_dot) gamma_dot = tau, which rises with gamma_dot from 0, by bisection; 0 where
+    tau <= 0 or p <= 0. For the uniform flows of references.py."""
+    out = np.zeros(tau.shape[0])
+    for k in range(tau.shape[0]):
+        if tau[k] <= 0.0 or p[k] <= 0.0:
+            continue
+        scale = m.d0 * math.sqrt(m.rho_s0 / p[k])  # I per unit shear rate
+        hi = 1.0
+        while regularised_viscosity(p[k], hi, hi * scale, m.rho_s0, m.d0, m) * hi < tau[k] and hi < 1e12:
+            hi *= 2.0
+        lo = 0.0
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if regularised_viscosity(p[k], mid, mid * scale, m.rho_s0, m.d0, m) * mid < tau[k]:
+                lo = mid
+            else:
+                hi = mid
+        out[k] = 0.5 * (lo + hi)
+    return out
