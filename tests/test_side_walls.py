@@ -17,10 +17,10 @@ SHEET = ["sliding_sheet", "--t-end", "0.02", "--set", "floor=free_slip", "column
 RATE = 2.0 * 0.4 / 0.1  # 2 mu_w / W
 
 
-def friction(v, p=500.0, rho=1500.0, kind=MOVING, v_reg=0.01):
+def friction(v, p=500.0, rho=1500.0, kind=MOVING, v_reg=0.01, dt=1e-4):
     acc = np.zeros((1, 2))
     add_side_wall_friction(1, np.array([kind]), np.array([v], dtype=float), np.array([p]), np.array([rho]),
-                           RATE, v_reg, acc)
+                           RATE, v_reg, dt, acc)
     return acc[0]
 
 
@@ -32,6 +32,14 @@ def test_below_the_regularising_speed_it_falls_linearly_to_zero():
     slow = np.array([0.003, 0.004])  # |v| = v_reg / 2
     np.testing.assert_allclose(friction(slow), -RATE * 500.0 / 1500.0 * slow / 0.01, rtol=1e-14)
     np.testing.assert_array_equal(friction([0.0, 0.0]), [0.0, 0.0])
+
+
+def test_a_step_never_reverses_the_motion():
+    """Where the friction would take more than the speed in one step (F dt > |v|, v_reg), it is a
+    drag of rate 1 / dt: a kick of dt brings the particle to rest, not past it."""
+    v, dt = np.array([0.003, -0.004]), 0.05  # F dt = 2.67 m/s^2 x 0.05 s = 0.13 m/s > |v| = 0.005 m/s
+    np.testing.assert_allclose(v + dt * friction(v, dt=dt), [0.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(friction(v, dt=dt), -v / dt, rtol=1e-14)
 
 
 def test_no_friction_in_tension_nor_on_walls():

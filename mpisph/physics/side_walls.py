@@ -6,7 +6,7 @@ sigma_w the normal stress on them taken as the pressure p of the friction law mu
 closure). Averaged over the width, two walls give the body force 2 mu_w p / W per unit volume, so
 the acceleration
 
-    a_i = -(2 mu_w p_i / (rho_i W)) v_i / max(|v_i|, v_reg).
+    a_i = -F_i v_i / max(|v_i|, v_reg, F_i dt_a),   F_i = 2 mu_w p_i / (rho_i W),
 
 p_i is the pressure the mu(I) law takes: the field ``law_pressure`` where the scheme keeps one
 (law_pressure = carried_mean: the kernel mean of the pressure s p that the pairs carry, the
@@ -14,14 +14,13 @@ continuum's pressure in that discretisation, physics/mu_i.py), else the grains' 
 (law_pressure = state). granular_flow.side_walls refuses law_pressure = carried, whose s p is not
 kept.
 
-Above v_reg this is Coulomb's law, of constant magnitude against the motion; below it the friction
-falls linearly to zero with the speed, a drag at the rate k = 2 mu_w p / (rho W v_reg), instead of
-flipping the velocity's sign at every step where the grains stop. The explicit step takes that drag
-stably while k dt stays below about one: with granular_flow.side_walls's v_reg = sqrt(g H) / 100 and
-p / rho up to g H, k dt is at most 2 mu_w sqrt(g H) dt / (0.01 W), 0.37 for the tallest, narrowest
-column of docs/COLLAPSES.md ('Side walls': a = 8, W = L_0 / 2, mu_w = 0.36, dt = 9e-5 s) and 0.01 on
-the walled incline of docs/INCLINE.md. A particle at rest feels none; tension (p < 0) gives no
-friction.
+Above the speed max(v_reg, F_i dt_a) this is Coulomb's law, of constant magnitude F_i against the
+motion; below it the friction falls linearly to zero with the speed, a drag, instead of flipping the
+velocity's sign at every step where the grains stop. v_reg is a case's choice
+(granular_flow.side_walls: sqrt(g H) / 100); F_i dt_a, the speed the friction takes in an advection
+step dt_a (the configuration's, StepContext.advection_step, at least the time step dt), keeps the
+drag's rate times dt at most one, so that the explicit kick never reverses a particle's motion. A particle at
+rest feels none; tension (p < 0) gives no friction.
 """
 
 import numpy as np
@@ -32,9 +31,9 @@ from ..particles import MOVING
 
 
 @njit(cache=True)
-def add_side_wall_friction(n, kind, v, p, rho, rate, v_reg, acc):
-    """acc_i -= rate max(p_i, 0) / rho_i v_i / max(|v_i|, v_reg) for the moving particles in [0, n),
-    with rate = 2 mu_w / W (module docstring)."""
+def add_side_wall_friction(n, kind, v, p, rho, rate, v_reg, dt, acc):
+    """acc_i -= F_i v_i / max(|v_i|, v_reg, F_i dt), F_i = rate p_i / rho_i, for the moving particles
+    in [0, n) with p_i > 0, rate = 2 mu_w / W (module docstring)."""
     dim = acc.shape[1]
     for i in range(n):
         if kind[i] != MOVING or p[i] <= 0.0:
@@ -42,7 +41,8 @@ def add_side_wall_friction(n, kind, v, p, rho, rate, v_reg, acc):
         speed = 0.0
         for a in range(dim):
             speed += v[i, a] * v[i, a]
-        scale = rate * p[i] / (rho[i] * max(np.sqrt(speed), v_reg))
+        coulomb = rate * p[i] / rho[i]
+        scale = coulomb / max(np.sqrt(speed), v_reg, coulomb * dt)
         for a in range(dim):
             acc[i, a] -= scale * v[i, a]
 
@@ -61,4 +61,5 @@ class SideWallFriction(ForceTerm):
     def add(self, ctx, acc):
         pa = ctx.particles
         pressure = pa.law_pressure if "law_pressure" in pa.arrays else pa.p
-        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, pressure, pa.rho, self.rate, self.v_reg, acc)
+        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, pressure, pa.rho, self.rate, self.v_reg, ctx.advection_step,
+                               acc)
