@@ -59,8 +59,8 @@ def setup(p):
     slope = math.tan(math.radians(p.theta))
     warnings = []
     if slope >= material.mu_2:
-        warnings.append(f"tan(theta) = {slope:.4g} >= mu_2 = {material.mu_2:.4g}: no steady flow exists, the "
-                        f"layer accelerates without bound")
+        warnings.append(f"tan(theta) = {slope:.4g} >= mu_2 = {material.mu_2:.4g}: no steady flow exists "
+                        f"without side walls, the layer accelerates without bound")
     forces = side_walls(p, p.H)
     try:
         u_ref = inclined_plane_surface_velocity(material, p.theta, p.H, p.g)

@@ -12,6 +12,7 @@ from .physics.mu_i import (LAW_PRESSURES, LAW_STRAIN_RATES, PRESSURE_FORMS, VISC
 from .physics.side_walls import SideWallFriction
 
 MACH = 0.1  # 004_ Secs. 5.1 and 5.2 choose K_t for this Mach number
+WALL_CREEP = 0.01  # the side walls' regularising speed over sqrt(g H) (physics/side_walls.py)
 
 # The corrected viscous stress taken implicitly and the three options that make the friction law see
 # the continuum's stresses and strain rate (physics/mu_i.py, docs/INCLINE.md), as --set words: what
@@ -86,8 +87,8 @@ def side_wall_params():
 
 def side_walls(p, height):
     """The case's force terms of the side walls of ``p`` (side_wall_params) on grains of a layer or
-    column ``height`` high: none for channel_width = 0, else their friction, regularised below a
-    hundredth of sqrt(g height)."""
+    column ``height`` high: none for channel_width = 0, else their friction, regularised below
+    WALL_CREEP sqrt(g height)."""
     if p.channel_width == 0:
         return []
     if p.channel_width < 0 or not 0 <= p.wall_friction_deg < 90:
@@ -97,4 +98,4 @@ def side_walls(p, height):
         raise InputError("side walls take the law's pressure, which law_pressure=carried does not keep: use "
                          "carried_mean or state")
     return [SideWallFriction(p.channel_width, math.tan(math.radians(p.wall_friction_deg)),
-                             0.01 * math.sqrt(p.g * height))]
+                             WALL_CREEP * math.sqrt(p.g * height))]

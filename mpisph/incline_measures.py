@@ -10,7 +10,8 @@ import numpy as np
 
 from . import measure
 from .references import (inclined_plane_flow_depth, inclined_plane_mean_velocity_with_viscosity,
-                         inclined_plane_inertial_number_between_walls, inclined_plane_surface_velocity,
+                         inclined_plane_inertial_number_between_walls,
+                         inclined_plane_mean_velocity_between_walls, inclined_plane_surface_velocity,
                          inclined_plane_velocity, inclined_plane_velocity_between_walls,
                          inclined_plane_velocity_with_viscosity, pair_viscosity_of_alpha)
 from .tensors import unpacked
@@ -32,29 +33,30 @@ def side_walls_of(p):
 def analytical_velocity(p, material, z):
     """The uniform flow's u at the heights ``z`` (clipped to the flow depth): between the run's side
     walls when it has them (``channel_width`` > 0), else 004_'s."""
-    theta, H, g = p["theta"], flow_depth(p, material), p["g"]
+    theta, H, g, walls = p["theta"], flow_depth(p, material), p["g"], side_walls_of(p)
     z = np.clip(np.asarray(z, dtype=float), 0.0, H)
-    if side_walls_of(p):
-        return inclined_plane_velocity_between_walls(material, theta, H, g, *side_walls_of(p), z)
+    if walls:
+        return inclined_plane_velocity_between_walls(material, theta, H, g, *walls, z)
     return inclined_plane_velocity(material, theta, H, g, z)
 
 
 def analytical_inertial_number(p, material, z):
     """The uniform flow's I at the heights ``z`` (clipped to the flow depth): I_u of mu(I_u) =
     tan(theta) at every depth without side walls."""
-    theta, H, g = p["theta"], flow_depth(p, material), p["g"]
-    if side_walls_of(p):
+    theta, H, g, walls = p["theta"], flow_depth(p, material), p["g"], side_walls_of(p)
+    if walls:
         z = np.clip(np.asarray(z, dtype=float), 0.0, H)
-        return inclined_plane_inertial_number_between_walls(material, theta, H, g, *side_walls_of(p), z)
+        return inclined_plane_inertial_number_between_walls(material, theta, H, g, *walls, z)
     return np.full(np.shape(z), material.uniform_flow(theta)[0])
 
 
 def analytical_mean(p, material):
-    """The mean of ``analytical_velocity`` over the flow depth: 3/5 of the surface speed of 004_'s
-    u(z) ~ H^(3/2) - (H - z)^(3/2)."""
-    if side_walls_of(p):
-        return float(analytical_velocity(p, material, np.linspace(0.0, flow_depth(p, material), 2001)).mean())
-    return 0.6 * inclined_plane_surface_velocity(material, p["theta"], flow_depth(p, material), p["g"])
+    """The mass-weighted mean of ``analytical_velocity`` over the layer, as the particles' mean speed
+    weighs it: 3/5 of the surface speed of 004_'s u(z) ~ H^(3/2) - (H - z)^(3/2) at its uniform phi_u."""
+    theta, H, g, walls = p["theta"], flow_depth(p, material), p["g"], side_walls_of(p)
+    if walls:
+        return inclined_plane_mean_velocity_between_walls(material, theta, H, g, *walls)
+    return 0.6 * inclined_plane_surface_velocity(material, theta, H, g)
 
 
 def layer_speeds(frame, p, material):

@@ -2,6 +2,8 @@
 
 import numpy as np
 
+from .physics.mu_i_law import regularised_shear_rates
+
 
 def elliptical_drop_axes(t, A0=100.0, dt_max=1e-7):
     """Semi-axes (a, 1/a) of the stretched drop (Monaghan 1994; 000_ Sec. 4.1).
@@ -181,7 +183,9 @@ def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, regularised=
     with a Newtonian kinematic viscosity ``nu`` added (``inclined_plane_velocity_with_viscosity``) or
     between side walls (``wall_rate`` = 2 mu_w / W, ``inclined_plane_velocity_between_walls``), of
     the friction law or, ``regularised``, of the regularised law the solver takes (Eqs. 46-55,
-    physics/mu_i_law.py; without nu)."""
+    physics/mu_i_law.py; not with nu). Needs the uniform flow's finite I_u (tan(theta) < mu_2)."""
+    if regularised and nu != 0.0:
+        raise ValueError("the regularised uniform flow takes no added viscosity")
     m = material.params
     tan, cos = np.tan(np.radians(theta_deg)), np.cos(np.radians(theta_deg))
     I_u, phi_u = material.uniform_flow(theta_deg)
@@ -196,8 +200,6 @@ def _uniform_flow(material, theta_deg, H, g, nu=0.0, wall_rate=0.0, regularised=
                                            [0.0]))
         friction = tan - held / np.maximum(p, 1e-300)
         if regularised:
-            from .physics.mu_i_law import regularised_shear_rates
-
             I = regularised_shear_rates(friction * p, p, m) * material.d0 / np.maximum(root, 1e-300)
         else:
             lo, hi = np.zeros_like(p), np.full_like(p, I_u)  # nu >= 0, walls: I <= I_u
@@ -258,6 +260,13 @@ def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w
     height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width,
                                         regularised=regularised)
     return np.interp(np.asarray(z, dtype=float), height, speed)
+
+
+def inclined_plane_mean_velocity_between_walls(material, theta_deg, H, g, width, mu_w, regularised=False):
+    """The mass-weighted mean of ``inclined_plane_velocity_between_walls`` over the layer (the mean
+    over its pressure, dp being the mass per area times g cos(theta))."""
+    _, speed, p, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width, regularised=regularised)
+    return float(np.sum(0.5 * (speed[1:] + speed[:-1]) * -np.diff(p)) / p[0])
 
 
 def inclined_plane_inertial_number_between_walls(material, theta_deg, H, g, width, mu_w, z):

@@ -37,12 +37,13 @@ import numpy as np
 
 from mpisph.case import case_of_frame
 from mpisph.incline_measures import (analytical_inertial_number, analytical_velocity, carried_pressure, flow_depth,
-                                     hydrostatic, kernel_moment, layer_speeds, profile_figures, side_walls_of,
-                                     weight_above, with_artificial_viscosity)
+                                     hydrostatic, kernel_moment, layer_speeds, profile_figures, weight_above,
+                                     with_artificial_viscosity)
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i_law import friction
+from mpisph.physics.side_walls import SideWallFriction, add_side_wall_friction
 from mpisph.physics.viscous_stress import strain_rate
 
 
@@ -63,8 +64,9 @@ def layer_table(frames, p, material):
     """Rows (height, u/u_a, shear rate/analytical, p/p_h, s p/p_h, mu/mu_a, I/I_a, s, A_xy, alignment)
     averaged over ``frames``, the analytical ones of the uniform flow at the layer's height
     (incline_measures: without side walls mu_a = tan(theta) and I_a = I_u at every depth); u/u_a is nan
-    where u_a = 0, on the bed or where the walls hold the grains at rest; the alignment is the layer's
-    mean 2 eps_xy over its mean gamma_dot, the law's strain rate."""
+    where u_a = 0, on the bed, and the rate's and I's ratios where I_a = 0, where the walls hold the
+    grains at rest; the alignment is the layer's mean 2 eps_xy over its mean gamma_dot, the law's
+    strain rate."""
     dp = p["dp"]
 
     def of_frame(f):
@@ -81,8 +83,9 @@ def layer_table(frames, p, material):
         u_a = float(analytical_velocity(p, material, centre))
         I_a = float(analytical_inertial_number(p, material, centre))
         rate_a = I_a * math.sqrt(p_h / material.rho_s0) / material.d0
-        rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a, pressure / p_h, carried / p_h,
-                     mu / friction(I_a, material.params), I / I_a, share, A_xy, rate / gamma_dot))
+        rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a if I_a > 0 else np.nan, pressure / p_h,
+                     carried / p_h, mu / friction(I_a, material.params), I / I_a if I_a > 0 else np.nan, share, A_xy,
+                     rate / gamma_dot))
     return rows
 
 
@@ -171,9 +174,11 @@ def traction_table(frames, p):
     """Rows (plane height, then for the shear and for the normal traction on the part above each plane
     between layers: that of the pressure pairs, of the viscous pairs and of the momentum carried
     across, each over the weight's component along the slope less the side walls' friction on that
-    part, then over the weight's component normal to it)."""
+    part (physics/side_walls.py on the frame's velocities and the law's pressure), then over the
+    weight's component normal to it)."""
     dp, theta, length = p["dp"], math.radians(p["theta"]), p["columns"] * p["dp"]
     kernel = Kernel(p["kernel"], p["h_factor"] * dp, 2)
+    walls = [t for t in case_of_frame(p).forces if isinstance(t, SideWallFriction)]
     planes = np.arange(1, int(p["H"] / dp)) * dp
     sums = np.zeros((len(planes), 6))
     for f in frames:
@@ -198,10 +203,13 @@ def traction_table(frames, p):
         counts = np.bincount(layer)
         v = f["v"] - np.stack([np.bincount(layer, f["v"][:, c]) / counts for c in (0, 1)], axis=1)[layer]
         normal_weight = weight_above(f, p, planes)
-        # what the side walls hold of the part above each plane, 2 mu_w / W sum V p (physics/side_walls.py)
-        walls = side_walls_of(p)
-        held = [] if walls is None else [2.0 * walls[1] / walls[0] * np.sum((m * np.maximum(pressure, 0.0) / rho)[
-            x[:, 1] > Y]) / length for Y in planes]
+        # what the side walls hold of the part above each plane: their force along the slope
+        held = np.zeros(len(planes))
+        for term in walls:
+            acc = np.zeros_like(f["v"])
+            add_side_wall_friction(len(x), f["kind"], f["v"], f["law_pressure"] if "law_pressure" in f else pressure,
+                                   rho, term.rate, term.v_reg, 0.0, acc)
+            held -= [np.sum((m * acc[:, 0])[x[:, 1] > Y]) / length for Y in planes]
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y
             across = above[:, None] & ~above[None, :]
@@ -211,7 +219,7 @@ def traction_table(frames, p):
             # normal to the slope) from below
             shear = [-a[across].sum() / length for a in on_i[0]] + [-flux[0]]
             normal = [a[across].sum() / length for a in on_i[1]] + [flux[1]]
-            along = normal_weight[n] * math.tan(theta) - (held[n] if held else 0.0)
+            along = normal_weight[n] * math.tan(theta) - held[n]
             sums[n] += np.array(shear + normal) / np.repeat([along, normal_weight[n]], 3)
     return [(Y, *(sums[n] / len(frames))) for n, Y in enumerate(planes)]
 

@@ -139,7 +139,8 @@ def test_regularised_shear_rate_carries_the_stress():
     assert rates[0] == 0.0
     for k in (1, 2, 3):
         I = rates[k] * m.d0 / math.sqrt(p[k] / m.rho_s0)
-        assert regularised_viscosity(p[k], rates[k], I, m.rho_s0, m.d0, m) * rates[k] == pytest.approx(tau[k], rel=1e-9)
+        carried = regularised_viscosity(p[k], rates[k], I, m.rho_s0, m.d0, m) * rates[k]
+        assert carried == pytest.approx(tau[k], rel=1e-9)
     assert rates[1] == pytest.approx(tau[1] / regularised_viscosity(p[1], 0.0, 0.0, m.rho_s0, m.d0, m), rel=0.05)
     I = rates[3] * m.d0 / math.sqrt(p[3] / m.rho_s0)
     assert m.m_0 * rates[3] > 20 and friction(I, m) * p[3] == pytest.approx(tau[3], rel=1e-6)

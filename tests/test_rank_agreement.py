@@ -100,9 +100,10 @@ CASES = {
     # the mu(I) density by kernel summation near a free surface
     "lube_collapse_2d reinit": (["--set", "dp=0.005", "density_reinit=free_surface", "--t-end", "0.06",
                                  "--output-interval", "0.03"], 0.5),
-    # the side walls' friction (a case's own force term)
-    "lube_collapse_2d side_walls": (["--set", "dp=0.005", "channel_width=0.05", "wall_friction_deg=20", "--t-end",
-                                     "0.06", "--output-interval", "0.03"], 0.5),
+    # the side walls' friction (a case's own force term) on the law's pressure
+    "lube_collapse_2d side_walls": (["--set", "dp=0.005", "channel_width=0.05", "wall_friction_deg=20",
+                                     "law_pressure=carried_mean", "--t-end", "0.06", "--output-interval", "0.03"],
+                                    0.5),
 }
 FIELDS = ("x", "v", "rho", "p", "drho_dt", "stress", "shear_stress", "plastic_strain", "eta", "rho_s", "knot",
           "displacement_gradient")

@@ -7,6 +7,7 @@ import pytest
 
 from mpisph import references
 from mpisph.case import CASES_DIR
+from mpisph.physics.mu_i_law import friction
 
 
 def test_elliptical_drop_semi_axes():
@@ -163,8 +164,21 @@ def test_regularised_uniform_flow_between_walls():
     z = np.linspace(0.0, H, 201)
     wide = [references.inclined_plane_velocity_between_walls(mat, theta, H, g, 0.08, 0.15, z, regularised=r)
             for r in (False, True)]
-    np.testing.assert_allclose(wide[1], wide[0], rtol=0.03, atol=0.01 * wide[0][-1])
+    np.testing.assert_allclose(wide[1], wide[0], rtol=0, atol=5e-4 * wide[0][-1])  # 7e-5 here
     narrow = [references.inclined_plane_velocity_between_walls(mat, theta, H, g, 0.02, 0.15, z, regularised=r)
               for r in (False, True)]
     resting = z < 0.3 * H
     assert np.all(narrow[0][resting] < 1e-9) and np.all(np.diff(narrow[1][resting]) > 0)
+
+
+def test_uniform_flow_between_walls_balances_every_depth():
+    """With the beads' phi(I) the friction at each depth is the slope's less what the walls hold of the
+    grains above, (2 mu_w / W) int p dzeta / p, the integral taken over the returned heights (which
+    phi(I) sets): the fixed point on phi is converged."""
+    mat, g, H, theta, rate = _beads(), 9.81, 0.02, 25.0, 2.0 * 0.15 / 0.08
+    height, _, p, I = references._uniform_flow(mat, theta, H, g, wall_rate=rate)
+    above = np.concatenate((np.cumsum((0.5 * (p[1:] + p[:-1]) * np.diff(height))[::-1])[::-1], [0.0]))
+    inside = p > 1e-3 * p[0]
+    expected = np.tan(np.radians(theta)) - rate * above[inside] / p[inside]
+    assert np.ptp(expected) > 0.03  # the walls matter
+    np.testing.assert_allclose([friction(i, mat.params) for i in I[inside]], expected, rtol=0, atol=1e-8)

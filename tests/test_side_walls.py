@@ -4,13 +4,14 @@ loses to the walls exactly the momentum their friction takes, of the grains' pre
 law_pressure = carried_mean, of the law's."""
 
 import math
+from types import SimpleNamespace
 import numpy as np
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.particles import MOVING, WALL
-from mpisph.physics.side_walls import add_side_wall_friction
+from mpisph.physics.side_walls import SideWallFriction, add_side_wall_friction
 from mpirun import mpisph, stderr_lines
 
 SHEET = ["sliding_sheet", "--t-end", "0.02", "--set", "floor=free_slip", "columns=8"]  # --set words follow
@@ -40,6 +41,24 @@ def test_a_step_never_reverses_the_motion():
     v, dt = np.array([0.003, -0.004]), 0.05  # F dt = 2.67 m/s^2 x 0.05 s = 0.13 m/s > |v| = 0.005 m/s
     np.testing.assert_allclose(v + dt * friction(v, dt=dt), [0.0, 0.0], atol=1e-15)
     np.testing.assert_allclose(friction(v, dt=dt), -v / dt, rtol=1e-14)
+
+
+def test_the_term_takes_the_laws_pressure_and_the_advection_step():
+    """SideWallFriction.add on particles with and without the field law_pressure, and with an
+    advection step long enough that the friction would take more than the speed in one step."""
+    slow = np.array([[0.003, -0.004]])
+
+    def add(arrays, advection_step):
+        particles = SimpleNamespace(n_owned=1, arrays=arrays, **arrays)
+        acc = np.zeros((1, 2))
+        SideWallFriction(0.1, 0.4, 0.01).add(SimpleNamespace(particles=particles, advection_step=advection_step), acc)
+        return acc[0]
+
+    arrays = dict(kind=np.array([MOVING]), v=slow, p=np.array([500.0]), rho=np.array([1500.0]))
+    np.testing.assert_allclose(add(arrays, 1e-4), friction(slow[0]), rtol=1e-14)
+    np.testing.assert_allclose(add(dict(arrays, law_pressure=np.array([250.0])), 1e-4), friction(slow[0], p=250.0),
+                               rtol=1e-14)
+    np.testing.assert_allclose(add(arrays, 0.05), -slow[0] / 0.05, rtol=1e-14)
 
 
 def test_no_friction_in_tension_nor_on_walls():

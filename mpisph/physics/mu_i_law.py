@@ -184,7 +184,8 @@ def regularised_shear_rates(tau, p, m):
     """The shear rates at which the regularised law (``regularised_viscosity``) of incompressible
     grains (rho_s = rho_s0, d = d0) carries the shear stresses ``tau`` at the pressures ``p``: the root
     of eta_hat(gamma_dot) gamma_dot = tau, which rises with gamma_dot from 0, by bisection; 0 where
-    tau <= 0 or p <= 0. For the uniform flows of references.py."""
+    tau <= 0 or p <= 0, inf where tau is out of the law's reach (tau >= mu_2 p). For the uniform
+    flows of references.py."""
     out = np.zeros(tau.shape[0])
     for k in range(tau.shape[0]):
         if tau[k] <= 0.0 or p[k] <= 0.0:
@@ -193,6 +194,9 @@ def regularised_shear_rates(tau, p, m):
         hi = 1.0
         while regularised_viscosity(p[k], hi, hi * scale, m.rho_s0, m.d0, m) * hi < tau[k] and hi < 1e12:
             hi *= 2.0
+        if hi >= 1e12:
+            out[k] = np.inf
+            continue
         lo = 0.0
         for _ in range(200):
             mid = 0.5 * (lo + hi)

@@ -19,7 +19,9 @@ motion; below it the friction falls linearly to zero with the speed, a drag, ins
 velocity's sign at every step where the grains stop. v_reg is a case's choice
 (granular_flow.side_walls: sqrt(g H) / 100); F_i dt_a, the speed the friction takes in an advection
 step dt_a (the configuration's, StepContext.advection_step, at least the time step dt), keeps the
-drag's rate times dt at most one, so that the explicit kick never reverses a particle's motion. A particle at
+drag's rate times dt at most one: a kick of dt from the velocity the friction is evaluated at does not
+reverse it (symplectic_verlet.py evaluates it at the predicted velocity and kicks from v(n), so there
+this bounds the friction's share of the kick, not its sign). A particle at
 rest feels none; tension (p < 0) gives no friction.
 """
 
