@@ -130,8 +130,8 @@ def test_regularised_viscosity_at_rest_is_eq_53_and_table_2():
 
 def test_regularised_shear_rate_carries_the_stress():
     """The rate at which the regularised law carries a stress: far below the yield stress mu_s p it
-    creeps at tau / eta_max (at rates where m_0 gamma_dot << 1); well above it, where exp(-m_0 gamma_dot) is negligible, it flows at the
-    friction law's rate, mu(I) p = tau."""
+    creeps at tau / eta_max (at rates where m_0 gamma_dot << 1); well above it, where
+    exp(-m_0 gamma_dot) is negligible, it flows at the friction law's rate, mu(I) p = tau."""
     m = beads(m_0=0.2).params
     p = np.array([50.0, 50.0, 50.0, 2000.0])
     tau = np.array([0.0, 0.02, 1.1, 1.1]) * m.mu_s * p
