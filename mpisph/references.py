@@ -256,7 +256,8 @@ def inclined_plane_velocity_between_walls(material, theta_deg, H, g, width, mu_w
     et al.'s). u(z) is gamma_dot = I sqrt(p / rho_s0) / d integrated from the bed, p the weight above
     at phi(I) of Eq. 8. Grains incompressible, as there. With ``regularised`` the law is the one the
     solver takes, regularised below the yield stress (004_ Eqs. 46-55), under which the grains that
-    the walls would hold creep."""
+    the walls would hold creep; the walls' friction stays mu_w p there, where the solver's softens
+    below its regularising speed (physics/side_walls.py)."""
     height, speed, _, _ = _uniform_flow(material, theta_deg, H, g, wall_rate=2.0 * mu_w / width,
                                         regularised=regularised)
     return np.interp(np.asarray(z, dtype=float), height, speed)
