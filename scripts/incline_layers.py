@@ -43,7 +43,7 @@ from mpisph.io.frames import list_frames, read_frame
 from mpisph.kernels import Kernel
 from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i_law import friction
-from mpisph.physics.side_walls import SideWallFriction, add_side_wall_friction
+from mpisph.physics.side_walls import SideWallFriction, add_side_wall_friction, friction_pressure
 from mpisph.physics.viscous_stress import strain_rate
 
 
@@ -78,10 +78,11 @@ def layer_table(frames, p, material):
                                  f["inertial_number"][s].mean(), share[s].mean(), A_xy[s].mean(),
                                  f["gamma_dot"][s].mean())
 
+    layers = per_layer(frames, dp, of_frame)
+    centres = [layer[0] for layer in layers]  # the uniform flow solved once for every layer's height
     rows = []
-    for centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot in per_layer(frames, dp, of_frame):
-        u_a = float(analytical_velocity(p, material, centre))
-        I_a = float(analytical_inertial_number(p, material, centre))
+    for (centre, u, rate, pressure, carried, p_h, mu, I, share, A_xy, gamma_dot), u_a, I_a in zip(
+            layers, analytical_velocity(p, material, centres), analytical_inertial_number(p, material, centres)):
         rate_a = I_a * math.sqrt(p_h / material.rho_s0) / material.d0
         rows.append((centre, u / u_a if u_a > 0 else np.nan, rate / rate_a if I_a > 0 else np.nan, pressure / p_h,
                      carried / p_h, mu / friction(I_a, material.params), I / I_a if I_a > 0 else np.nan, share, A_xy,
@@ -207,8 +208,8 @@ def traction_table(frames, p):
         held = np.zeros(len(planes))
         for term in walls:
             acc = np.zeros_like(f["v"])
-            add_side_wall_friction(len(x), f["kind"], f["v"], f["law_pressure"] if "law_pressure" in f else pressure,
-                                   rho, term.rate, term.v_reg, 0.0, acc)
+            add_side_wall_friction(len(x), f["kind"], f["v"], friction_pressure(f), rho, term.rate, term.v_reg, 0.0,
+                                   acc)
             held -= [np.sum((m * acc[:, 0])[x[:, 1] > Y]) / length for Y in planes]
         for n, Y in enumerate(planes):
             above = x[:, 1] > Y

@@ -49,6 +49,12 @@ def add_side_wall_friction(n, kind, v, p, rho, rate, v_reg, dt, acc):
             acc[i, a] -= scale * v[i, a]
 
 
+def friction_pressure(fields):
+    """The pressure the walls' friction takes from ``fields`` (a particle or frame field mapping): the
+    law's, ``law_pressure``, where there is one, else the grains' p (module docstring)."""
+    return fields["law_pressure"] if "law_pressure" in fields else fields["p"]
+
+
 class SideWallFriction(ForceTerm):
     """The side walls' friction on the grains between them (module docstring): ``width`` W [m], the
     walls' friction coefficient ``mu_w`` and the regularising speed ``v_reg`` [m/s]."""
@@ -62,6 +68,5 @@ class SideWallFriction(ForceTerm):
 
     def add(self, ctx, acc):
         pa = ctx.particles
-        pressure = pa.law_pressure if "law_pressure" in pa.arrays else pa.p
-        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, pressure, pa.rho, self.rate, self.v_reg, ctx.advection_step,
-                               acc)
+        add_side_wall_friction(pa.n_owned, pa.kind, pa.v, friction_pressure(pa.arrays), pa.rho, self.rate, self.v_reg,
+                               ctx.advection_step, acc)
