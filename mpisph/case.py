@@ -21,7 +21,7 @@ from .kernels import KERNELS
 from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
 from .physics.fluid import LIMITED_PAIRS
-from .stabilisers import stabiliser_names
+from .stabilisers import SEPARATOR, stabiliser_names
 from .stabilisers.artificial_stress import EPSILON
 from .stabilisers.shifting import COEFFICIENT
 from .stabilisers.transport_velocity import EDGE_NEIGHBOURS, NEAR_SURFACE_NORMALS, SPLASHED
@@ -31,13 +31,16 @@ CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 
 @dataclass(frozen=True)
 class Param:
-    """A case parameter: default value (its type is the parameter's type), unit, meaning."""
+    """A case parameter: default value (its type is the parameter's type), unit, meaning; with
+    ``stabilisers``, a value may also be several of the choices but "none" joined by "+", which
+    stabilisers.stabiliser_names checks as a combination."""
 
     default: object
     unit: str
     doc: str
     choices: tuple = ()
     positive: bool = False
+    stabilisers: bool = False
 
     @property
     def type(self):
@@ -68,7 +71,12 @@ class Param:
         if not isinstance(value, self.type):
             raise InputError(f"parameter {name} takes a {self.type.__name__}, not {value!r}")
         if self.choices and value not in self.choices:
-            raise InputError(f"parameter {name} must be one of {', '.join(map(str, self.choices))}, not {value!r}")
+            parts = value.split(SEPARATOR) if self.stabilisers else ()
+            if not parts or "none" in parts or any(part not in self.choices for part in parts):
+                combined = f", or several of them (not none) joined by {SEPARATOR}" if self.stabilisers else ""
+                raise InputError(f"parameter {name} must be one of {', '.join(map(str, self.choices))}{combined}, "
+                                 f"not {value!r}")
+            stabiliser_names(value)
         if self.positive and not value > 0:
             raise InputError(f"parameter {name} must be positive, not {value!r}")
         return value
@@ -95,6 +103,9 @@ SHIFTING_PARAMS = {
                                   "with stabiliser=shifting)", positive=True),
 }
 
+COMBINATION_DOC = (f"; several joined by {SEPARATOR}, as artificial_stress{SEPARATOR}utvf, apply in that order, "
+                   "at most one of them a position shift (tvf, tvf_limited, utvf, shifting)")
+
 # Every case that offers the stabiliser ``artificial_stress`` exposes this.
 ARTIFICIAL_STRESS_PARAMS = {
     "artificial_stress_epsilon": Param(EPSILON, "-", "epsilon of the artificial stress (Monaghan 2000; Gray, "
@@ -111,8 +122,10 @@ def fluid_stabiliser_params(default, also=None):
     return {"stabiliser": Param(default, "-", "particle regularisation: tvf on inner particles, utvf on all "
                                 "(000_ Eqs. 30-37); shifting (Xu et al. 2009, Khayyer et al. 2017); "
                                 "artificial_stress (Monaghan 2000)"
-                                + "".join(f"; {name} ({source})" for name, source in also.items()),
-                                choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress")),
+                                + "".join(f"; {name} ({source})" for name, source in also.items())
+                                + COMBINATION_DOC,
+                                choices=("none", *also, "tvf", "utvf", "shifting", "artificial_stress"),
+                                stabilisers=True),
             **SHIFTING_PARAMS, **ARTIFICIAL_STRESS_PARAMS, **UTVF_PARAMS}
 
 
@@ -178,9 +191,9 @@ UTVF_PARAMS = {
 SOLID_PARAMS = {
     "stabiliser": Param("utvf", "-", "particle regularisation (000_ Eqs. 30-37; tvf_limited: tvf with 001_'s "
                         "limiter, Eqs. 15-16; artificial_stress: Gray, Monaghan & Swift 2001; shifting: Xu et al. "
-                        "2009; adaptive_kernel: 002_ Sec. 4, with kernel=cubic_spline)",
+                        "2009; adaptive_kernel: 002_ Sec. 4, with kernel=cubic_spline)" + COMBINATION_DOC,
                         choices=("none", "tvf", "tvf_limited", "utvf", "artificial_stress", "shifting",
-                                 "adaptive_kernel")),
+                                 "adaptive_kernel"), stabilisers=True),
     **ARTIFICIAL_STRESS_PARAMS,
     **SHIFTING_PARAMS,
     **UTVF_PARAMS,
@@ -250,7 +263,7 @@ class Case:
     periodic: tuple | None = None
     slab_axis: int = 0
     density_reinit: str = "none"  # none | inner | free_surface
-    stabilisers: tuple | str = ()  # names of mpisph.stabilisers.STABILISERS, in order ("a,b" or "none" too)
+    stabilisers: tuple | str = ()  # names of mpisph.stabilisers.STABILISERS, in order ("a+b" or "none" too)
     forces: list = field(default_factory=list)  # the case's own force terms (forces.ForceTerm), last in the sum
     integrator: str = "position_verlet"  # a name of mpisph.integrators.INTEGRATORS
     scheme_options: dict = field(default_factory=dict)  # the scheme's discretisation options (Scheme.options)

@@ -1,5 +1,6 @@
 """``python -m mpisph compare CASE --stabiliser none,tvf,utvf [--set NAME=VALUE ...] [-n RANKS]
-[--out DIR] [--colour FIELD]``: the case once per stabiliser, side by side.
+[--out DIR] [--colour FIELD]``: the case once per stabiliser, side by side; a run may combine
+remedies, as ``--stabiliser utvf,artificial_stress+utvf`` (stabilisers/__init__.py).
 
 Each run goes to OUT/<stabiliser>/ (OUT defaults to runs/compare_CASE) under ``mpirun -n RANKS``;
 OUT/compare.md gets a table with, for each, how the run ended and, from its last frame and its
@@ -60,7 +61,8 @@ def parse(argv):
 
 
 def stabiliser_names(text):
-    """The stabilisers of ``--stabiliser A,B,...``, one run each (``none`` is a run too)."""
+    """The stabilisers of ``--stabiliser A,B+C,...``, one run each (``none`` is a run too, and B+C
+    one with two remedies)."""
     return tuple(t.strip() for t in text.split(",") if t.strip())
 
 

@@ -24,7 +24,7 @@ def test_registries_are_keyed_by_their_parts_names():
 def test_stabiliser_lists():
     assert stabiliser_names("none") == ()
     assert stabiliser_names("utvf") == ("utvf",)
-    assert stabiliser_names("tvf_limited, utvf") == ("tvf_limited", "utvf")
+    assert stabiliser_names("artificial_stress + utvf") == ("artificial_stress", "utvf")
 
 
 def test_solver_loads_no_analysis():

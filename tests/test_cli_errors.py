@@ -149,7 +149,7 @@ def test_blow_up_names_step_time_rank_particle(tmp_path):
     ('scheme="riemann_fluid"', 'scheme="riemann_granular"', ["scheme riemann_granular takes a DruckerPrager",
                                                               "not Fluid"]),
     ('scheme="riemann_fluid"', 'scheme="sph"', ["scheme must be one of riemann_fluid"]),
-    ("stabilisers=p.stabiliser", 'stabilisers="tvf,artificial"',
+    ("stabilisers=p.stabiliser", 'stabilisers="tvf+artificial"',
      ["stabiliser must be none or one of", "'artificial'"]),
     ('scheme="riemann_fluid"', 'scheme="riemann_fluid", integrator="euler"', ["integrator must be one of"]),
     ('scheme_options={"limiter": p.limiter}', 'scheme_options={"limiter": p.limiter, "alpha": 0.1}',

@@ -57,6 +57,16 @@ CASES = {
     # the adaptive B-spline: knots per particle from the pressure zones, a pair kernel of two knots
     "vertical_cut": (["--set", "dp=0.1", "stabiliser=adaptive_kernel", "--t-end", "0.6", "--output-interval", "0.3"],
                      10.0),
+    # two remedies at once: the adaptive kernel's knots under UTVF's shift (its sums with the two knots)
+    # and under artificial stress's repulsion (its f_ij from the knots), and that repulsion beside UTVF
+    # on 000_'s kernel
+    "vertical_cut adaptive_kernel+utvf": (["--set", "dp=0.1", "stabiliser=adaptive_kernel+utvf", "--t-end", "0.6",
+                                           "--output-interval", "0.3"], 10.0),
+    "vertical_cut adaptive_kernel+artificial_stress": (["--set", "dp=0.1", "stabiliser=adaptive_kernel+artificial_stress",
+                                                        "--t-end", "0.6", "--output-interval", "0.3"], 10.0),
+    "vertical_cut artificial_stress+utvf": (["--set", "dp=0.1", "stabiliser=artificial_stress+utvf",
+                                             "kernel=wendland_c2", "h_factor=1.3", "--t-end", "0.6",
+                                             "--output-interval", "0.3"], 10.0),
     # the classic scheme of 002_ (artificial viscosity, Morris walls, the predictor-corrector) with
     # artificial stress: its principal tensions from the stress the integrator advances
     "soil_cylinder_impact": (["--set", "dp=0.001", "stabiliser=artificial_stress", "--t-end", "0.004",

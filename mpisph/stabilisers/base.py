@@ -17,6 +17,7 @@ class Stabiliser:
 
     name = ""
     needs_surface = False
+    shifts_positions = False  # moves the particles in ``apply`` (one such per combination: __init__.py)
     fields = ()
     adapts_kernel = False  # sets the knots of the adaptive kernel (kernels.py) in ``prepare``
 

@@ -103,6 +103,7 @@ class ParticleShifting(Stabiliser):
 
     name = "shifting"
     needs_surface = True
+    shifts_positions = True
 
     def __init__(self, case, params):
         self.coefficient = params.get("shifting_coefficient", COEFFICIENT)

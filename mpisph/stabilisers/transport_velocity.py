@@ -252,6 +252,7 @@ class LimitedTransportVelocity(Stabiliser):
 
     name = "tvf_limited"
     needs_surface = True
+    shifts_positions = True
 
     def apply(self, ctx):
         pa = ctx.particles
@@ -264,6 +265,7 @@ class TransportVelocity(Stabiliser):
 
     name = "tvf"
     needs_surface = True
+    shifts_positions = True
     unified = False
     keep_edge_neighbours = False
     outermost_normal = False
