@@ -60,7 +60,7 @@ def parse(argv):
     return a
 
 
-def stabiliser_names(text):
+def run_names(text):
     """The stabilisers of ``--stabiliser A,B+C,...``, one run each (``none`` is a run too, and B+C
     one with two remedies)."""
     return tuple(t.strip() for t in text.split(",") if t.strip())
@@ -215,7 +215,7 @@ def pictures(runs, colour, out):
 
 def main(argv):
     a = parse(argv)
-    names = stabiliser_names(a.stabiliser)
+    names = run_names(a.stabiliser)
     overrides = set_overrides(a.overrides)
     _, case = check(a.case, names, overrides)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute

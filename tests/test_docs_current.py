@@ -114,7 +114,7 @@ def check(argv):
         module = _case(a.case)
         compare.set_overrides(a.overrides)
         _check_sets(module, a.overrides)
-        names = [name for name in compare.stabiliser_names(a.stabiliser) if not PLACEHOLDER.search(name)]
+        names = [name for name in compare.run_names(a.stabiliser) if not PLACEHOLDER.search(name)]
         if names or "stabiliser" not in module.PARAMS:
             compare.check_stabilisers(a.case, module, names, {})
     else:
