@@ -9,37 +9,30 @@ from repo_script import load_script
 pair_closing = load_script("pair_closing")
 
 
-def frames_of(t, x):
-    """Frames of a 3 x 3 lattice of spacing 1 in 2D whose first two particles have positions x(t)
-    (the others still), their velocities dx/dt by differences."""
-    lattice = np.array([[a, b] for a in range(3) for b in range(3)], float) * 10.0  # far apart but the pair
+def approaching_pair(with_velocity):
+    """Frames of nine particles of volume 1 (dp = 1), 10 apart, of which the second closes on the first
+    from 1 dp to 0.2 dp at a constant speed; with ``with_velocity`` their velocities are that motion's,
+    else zero (a shift moved them)."""
+    t = np.linspace(0.0, 1.0, 201)
+    lattice = np.array([[a, b] for a in range(3) for b in range(3)], float) * 10.0
+    speed = -0.8 if with_velocity else 0.0
     out = []
-    for k, tk in enumerate(t):
-        pos = lattice.copy()
-        pos[:2] = x[k]
-        v = np.zeros_like(pos)
-        v[:2] = np.gradient(x, t, axis=0)[k]
-        out.append({"t": tk, "x": pos, "v": v, "gid": np.arange(9), "kind": np.full(9, MOVING),
+    for tk in t:
+        x, v = lattice.copy(), np.zeros_like(lattice)
+        x[1] = x[0] + (1.0 - 0.8 * tk, 0.0)
+        v[1] = (speed, 0.0)
+        out.append({"t": tk, "x": x, "v": v, "gid": np.arange(9), "kind": np.full(9, MOVING),
                     "mass": np.ones(9), "rho": np.ones(9)})
     return out
 
 
 def test_a_pair_that_moves_together_closes_by_its_velocities():
-    t = np.linspace(0.0, 1.0, 201)
-    gap = 1.0 - 0.8 * t  # from 1 dp to 0.2 dp at a constant relative speed
-    x = np.stack([np.stack([np.zeros_like(t), np.zeros_like(t)], 1), np.stack([gap, np.zeros_like(t)], 1)], 1)
-    change, by_velocity = pair_closing.closing(frames_of(t, x))
-    np.testing.assert_allclose(change, -0.8, atol=1e-12)  # each particle of the pair: the same pair
-    np.testing.assert_allclose(by_velocity, -0.8, atol=1e-9)
+    change, by_velocity = pair_closing.closing(approaching_pair(with_velocity=True))
+    np.testing.assert_allclose(change, -0.8, atol=1e-12)  # both particles of the pair
+    np.testing.assert_allclose(by_velocity, -0.8, atol=1e-12)
 
 
 def test_a_shift_without_a_velocity_is_the_rest():
-    t = np.linspace(0.0, 1.0, 201)
-    gap = 1.0 - 0.8 * t
-    x = np.stack([np.stack([np.zeros_like(t), np.zeros_like(t)], 1), np.stack([gap, np.zeros_like(t)], 1)], 1)
-    frames = frames_of(t, x)
-    for f in frames:
-        f["v"][:] = 0.0  # the same motion with no velocity: a shift did it all
-    change, by_velocity = pair_closing.closing(frames)
+    change, by_velocity = pair_closing.closing(approaching_pair(with_velocity=False))
     np.testing.assert_allclose(change, -0.8, atol=1e-12)
     np.testing.assert_allclose(by_velocity, 0.0, atol=1e-12)
