@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.kernels import Kernel, w
+from mpisph.kernels import AdaptiveKernelParams, Kernel, knot_coefficients
 from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL
 from mpisph.stabilisers.artificial_stress import (EPSILON, EXPONENT, artificial_stress_acceleration,
@@ -51,11 +51,17 @@ def test_in_2d_the_in_plane_block_alone_counts():
     assert not tensors(stress, 2, kind=np.array([WALL], np.int8)).any()
 
 
-def pair_force(stress, dim, dp=0.01, r=0.009):
-    """The artificial acceleration of particle 0 from particle 1 at distance r along x."""
+def pair_force(stress, dim, dp=0.01, r=0.009, knots=None, exponent=EXPONENT):
+    """The artificial acceleration of particle 0 from particle 1 at distance r along x: with the
+    Wendland kernel, or with ``knots`` (a_0, a_1) 002_'s adaptive spline at h = 1.5 dp."""
     x = np.zeros((2, dim))
     x[1, 0] = r
-    kernel = Kernel("wendland_c2", 1.3 * dp, dim).params
+    if knots is None:
+        kernel = Kernel("wendland_c2", 1.3 * dp, dim).params
+    else:
+        h = 1.5 * dp
+        coefficients = np.array([knot_coefficients(a, h, dim) for a in knots])
+        kernel = AdaptiveKernelParams(*Kernel("cubic_spline", h, dim).params, dim, np.array(knots), coefficients)
     start, nbr = neighbour_lists(x, np.arange(2), np.zeros(2, np.int8), 2, 2.6 * dp, np.full(dim, -0.1))
     kind = np.full(2, MOVING, np.int8)
     R = np.empty((2, 6))
@@ -63,7 +69,7 @@ def pair_force(stress, dim, dp=0.01, r=0.009):
                               dim, R)
     acc = np.zeros((2, dim))
     artificial_stress_acceleration(2, start, nbr, x, np.full(2, RHO * dp**dim), kind, np.zeros((2, dim)), R,
-                                   w(dp, kernel), EXPONENT, kernel, acc)
+                                   dp, exponent, kernel, acc)
     return acc
 
 
@@ -73,6 +79,18 @@ def test_a_pair_in_tension_is_pushed_apart_and_one_in_compression_is_not():
         assert acc[0, 0] < 0.0 < acc[1, 0]  # particle 1 sits at +x of particle 0
         np.testing.assert_allclose(acc[0], -acc[1], rtol=1e-14)
         assert not pair_force(np.diag([-1.0e4, -1.0e4, -1.0e4]), dim).any()
+
+
+def test_at_the_initial_spacing_f_is_one_whatever_the_knots_of_the_adaptive_kernel():
+    """f_ij = W_ij(r) / W_ij(dp) takes the pair's kernel in both (module docstring): at r = dp the
+    repulsion is that of f = 1 (exponent 0), for every pair of knots; nearer, f > 1."""
+    tension = np.diag([1.0e4, 2.0e3, 5.0e2])
+    for dim in (2, 3):
+        for knots in ((1.0, 1.0), (0.2, 0.2), (2.0, 2.0), (0.2, 1.78)):
+            at_dp = pair_force(tension, dim, r=0.01, knots=knots)
+            np.testing.assert_allclose(at_dp, pair_force(tension, dim, r=0.01, knots=knots, exponent=0), rtol=1e-13)
+            near = pair_force(tension, dim, r=0.008, knots=knots)
+            assert abs(near[0, 0]) > abs(pair_force(tension, dim, r=0.008, knots=knots, exponent=0)[0, 0])
 
 
 def test_no_net_force_on_a_cloud_in_random_stress():
@@ -89,8 +107,7 @@ def test_no_net_force_on_a_cloud_in_random_stress():
     R = np.empty((n, 6))
     artificial_stress_tensors(n, kind, packed(stress), rho, EPSILON, dim, R)
     acc = np.zeros((n, dim))
-    artificial_stress_acceleration(n, start, nbr, x, mass, kind, np.zeros((n, dim)), R, w(dp, kernel), EXPONENT,
-                                   kernel, acc)
+    artificial_stress_acceleration(n, start, nbr, x, mass, kind, np.zeros((n, dim)), R, dp, EXPONENT, kernel, acc)
     total = (mass[:, None] * acc).sum(axis=0)
     assert np.abs(acc).max() > 0.0
     assert np.abs(total).max() < 1e-12 * (mass[:, None] * np.abs(acc)).sum()

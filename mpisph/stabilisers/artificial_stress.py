@@ -5,12 +5,18 @@ Each material particle gets a tensor R_i from its principal stresses: in the pri
 R'_aa = -epsilon sigma'_aa / rho_i^2 where sigma'_aa > 0 (tension, positive in mpisph) and 0
 where it is compressive, rotated back, R_i = Q R' Q^T. The acceleration
 
-    dv_i/dt += sum_j m_j f_ij^n (R_i + R_j) . grad_i W_ij,     f_ij = W(r_ij) / W(dp),
+    dv_i/dt += sum_j m_j f_ij^n (R_i + R_j) . grad_i W_ij,     f_ij = W_ij(r_ij) / W_ij(dp),
 
 is repulsive for a pair in tension, largest for pairs nearer than dp, and antisymmetric in i
-and j, so it conserves linear momentum. n = 4 and, by default, epsilon = 0.3, as Gray et al. use
-them; a case sets epsilon with its parameter ``artificial_stress_epsilon`` (case.py's
-ARTIFICIAL_STRESS_PARAMS: every solid case, the dam break, drop, patch and Taylor-Green).
+and j, so it conserves linear momentum. f_ij is the pair's kernel over its value at the initial
+spacing, so f_ij = 1 at r_ij = dp: with the adaptive kernel (002_ Sec. 4) both use the pair's
+knots (kernels.pair_w). The fixed spline's W(dp) in the denominator would scale the repulsion by
+(W(dp; a) / W(dp; 1))^n: at h = 1.5 dp, for the knot that a neighbour in tension gives an
+undeformed cell (a = 1.78 in 2D, the cap a = b in 3D), 0.49 in 2D and 0.15 in 3D.
+
+n = 4 and, by default, epsilon = 0.3, as Gray et al. use them; a case sets epsilon with its
+parameter ``artificial_stress_epsilon`` (case.py's ARTIFICIAL_STRESS_PARAMS: every solid case, the
+dam break, drop, patch and Taylor-Green).
 
 In 2D (plane strain) the principal stresses are those of the in-plane block, as Gray et al.
 have them; in 3D those of the whole tensor, from an eigen-decomposition per particle (beyond
@@ -28,7 +34,7 @@ from numba import njit
 
 from ..errors import InputError
 from ..forces import ForceTerm
-from ..kernels import pair_dw, pair_w, w
+from ..kernels import pair_dw, pair_w
 from ..materials import Fluid
 from ..neighbours import pair_offset
 from ..particles import MOVING, WALL_SLIP, is_wall
@@ -121,7 +127,7 @@ def pressure_artificial_stress_tensors(n, kind, p, rho, epsilon, dim, R):
 
 
 @njit(cache=True)
-def artificial_stress_acceleration(n, start, nbr, xc, mass, kind, normal, R, w_dp, exponent, k, acc):
+def artificial_stress_acceleration(n, start, nbr, xc, mass, kind, normal, R, dp, exponent, k, acc):
     """acc += sum_j m_j f_ij^n (R_i + R_j) . grad_i W_ij for the moving particles in [0, n)."""
     dim = xc.shape[1]
     zero = np.zeros(len(kind))  # tensor_times adds p I to a packed tensor: R has none
@@ -132,7 +138,7 @@ def artificial_stress_acceleration(n, start, nbr, xc, mass, kind, normal, R, w_d
         for s in range(start[i], start[i + 1]):
             j = nbr[s]
             d0, d1, d2, r = pair_offset(xc, i, j)
-            f = (pair_w(k, r, i, j) / w_dp) ** exponent * mass[j] * pair_dw(k, r, i, j) / r
+            f = (pair_w(k, r, i, j) / pair_w(k, dp, i, j)) ** exponent * mass[j] * pair_dw(k, r, i, j) / r
             t0, t1, t2 = tensor_times(R, i, zero, dim, d0, d1, d2)
             if kind[j] == WALL_SLIP:
                 u0, u1, u2 = mirrored_tensor_times(R, i, zero, dim, d0, d1, d2, normal, j)
@@ -168,9 +174,8 @@ class ArtificialStressForce(ForceTerm):
             artificial_stress_tensors(pa.n, pa.kind, pa.stress, pa.rho, self.epsilon, pa.dim, R)
         else:
             raise InputError("the artificial_stress stabiliser needs a fluid or a solid scheme (a stress field)")
-        w_dp = w(self.dp, ctx.kernel.params)
         artificial_stress_acceleration(pa.n_owned, ctx.start, ctx.nbr, ctx.xc, pa.mass, pa.kind, pa.normal, R,
-                                       w_dp, EXPONENT, ctx.kernel.params, acc)
+                                       self.dp, EXPONENT, ctx.kernel.params, acc)
 
 
 class ArtificialStress(Stabiliser):
