@@ -49,6 +49,8 @@ def existing_output(tmp_path):
     (["flume_3d", "--set", "dp=1e-12"], ["the case has about", "particles", "GB to run", "GB available"]),
     (["cube_failure_3d", "--set", "dp=1e-12"], ["the case has about 8e+36 particles", "GB to run",
                                                  "GB available"]),
+    (["vertical_cut", "--set", "stabiliser=adaptive_kernel", "density_reinit=inner"],
+     ["adaptive_kernel needs density_reinit=none, not 'inner'", "4.3 % above rho0 in 2D"]),
 ])
 def test_bad_parameters(args, fragments, existing_output):
     out, marker = existing_output
