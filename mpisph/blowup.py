@@ -1,15 +1,17 @@
-"""Detection of a blown-up state: a non-finite value, a non-positive density or a moving particle
-outside the domain."""
+"""Detection of a blown-up state: a non-finite value, a non-positive density, a moving particle
+outside the domain, or two particles at the same place (which no pair sum can divide by)."""
 
 import math
+
+import numpy as np
 
 from numba import njit
 
 from .particles import MOVING
 
-NON_FINITE, OUTSIDE, NON_POSITIVE_DENSITY = 1, 2, 3
+NON_FINITE, OUTSIDE, NON_POSITIVE_DENSITY, COINCIDENT = 1, 2, 3, 4
 PROBLEMS = {NON_FINITE: "a non-finite value", OUTSIDE: "a particle left the domain",
-            NON_POSITIVE_DENSITY: "a non-positive density"}
+            NON_POSITIVE_DENSITY: "a non-positive density", COINCIDENT: "two particles at the same place"}
 
 
 @njit(cache=True)
@@ -32,3 +34,29 @@ def first_bad_particle(n, kind, x, v, rho, lo, hi, periodic):
             if not periodic[a] and not (lo[a] <= x[i, a] < hi[a]):
                 return i, OUTSIDE
     return -1, 0
+
+
+@njit(cache=True)
+def first_coincident_pair(n, start, nbr, x):
+    """(i, j) of the first owned particle i in [0, n) with a neighbour j at distance 0, whose pair
+    terms would divide by it; (-1, -1) if none. The search for the pair runs only when the
+    smallest squared distance, a branch-free reduction over the lists, is 0."""
+    dim = x.shape[1]
+    closest = np.inf
+    for i in range(n):
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            d0, d1 = x[i, 0] - x[j, 0], x[i, 1] - x[j, 1]
+            d2 = x[i, 2] - x[j, 2] if dim == 3 else 0.0
+            closest = min(closest, d0 * d0 + d1 * d1 + d2 * d2)
+    if closest > 0.0:
+        return -1, -1
+    for i in range(n):
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            same = True
+            for a in range(dim):
+                same = same and x[i, a] == x[j, a]
+            if same:
+                return i, j
+    return -1, -1

@@ -13,9 +13,11 @@ advection step (one neighbour configuration), on every rank:
                    CELL_SORT_EVERY configurations the owned particles are
                    re-sorted by cell in memory (sums do not depend on it)
     5. halo        ghosts within the kernel support of each cut (periodic images too)
-    6. neighbours  cell-linked lists over owned + ghosts, in canonical order;
-                   a StepContext (context.py) of this configuration; the kernel
-                   bound to the particles (the adaptive kernel's knots)
+    6. neighbours  cell-linked lists over owned + ghosts, in canonical order; stop
+                   on two particles at the same place (every pair sum divides by
+                   their distance); a StepContext (context.py) of this
+                   configuration; the kernel bound to the particles (the adaptive
+                   kernel's knots)
     7. prepare     each stabiliser's work before any pair sum (the adaptive
                    kernel's knots); the free-surface classes from the position
                    divergence, when the scheme or a stabiliser needs them
@@ -43,7 +45,7 @@ import numpy as np
 from mpi4py import MPI
 
 from . import surface
-from .blowup import PROBLEMS, first_bad_particle
+from .blowup import COINCIDENT, PROBLEMS, first_bad_particle, first_coincident_pair
 from .context import StepContext
 from .errors import BlowUp, NoConvergence, Stopped
 from .io.frames import frame_path, write_frame
@@ -124,6 +126,9 @@ class Simulation:
             xc[:] = pa.x
             start, nbr = neighbour_lists(xc, pa.gid, pa.kind, pa.n_owned, self.support, self.case.domain[0],
                                          self.workspace)
+            i, j = first_coincident_pair(pa.n_owned, start, nbr, xc)
+        self._stop_if_bad(None if i < 0 else (f"particles {int(pa.gid[i])} and {int(pa.gid[j])}",
+                                              PROBLEMS[COINCIDENT], np.round(pa.x[i], 6).tolist()))
         self.parts.kernel.bind(pa)
         self.ctx = StepContext(pa, start, nbr, xc, self.parts.kernel, self.halo, self.workspace)
         with self.timer("physics"):
@@ -139,17 +144,20 @@ class Simulation:
         lo, hi = self.case.domain
         k, problem = first_bad_particle(pa.n_owned, pa.kind, pa.x, pa.v, pa.rho, np.asarray(lo, float),
                                         np.asarray(hi, float), np.array(self.case.periodic, dtype=np.bool_))
-        local = None
-        if k >= 0:
-            local = (int(pa.gid[k]), PROBLEMS[problem], np.round(pa.x[k], 6).tolist())
+        self._stop_if_bad(None if k < 0 else (f"particle {int(pa.gid[k])}", PROBLEMS[problem],
+                                              np.round(pa.x[k], 6).tolist()))
+
+    def _stop_if_bad(self, local):
+        """Collective: if any rank found a problem, ``local`` = (which particles, what, position), write
+        a frame and raise BlowUp with the first such rank's report."""
         if not self.comm.allreduce(local is not None, op=MPI.LOR):
             return
         for rank, rep in enumerate(self.comm.allgather(local)):
             if rep is not None:
-                gid, what, pos = rep
+                which, what, pos = rep
                 self._write_unscheduled_frame()
                 raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {what} "
-                             f"(rank {rank}, particle {gid}, at {pos}); last frame written")
+                             f"(rank {rank}, {which}, at {pos}); last frame written")
 
     def _wrap_periodic(self):
         lo, hi = self.case.domain

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from mpisph.blowup import NON_FINITE, NON_POSITIVE_DENSITY, OUTSIDE, first_bad_particle
+from mpisph.blowup import NON_FINITE, NON_POSITIVE_DENSITY, OUTSIDE, first_bad_particle, first_coincident_pair
+from mpisph.neighbours import neighbour_lists
 from mpisph.particles import MOVING, WALL
 
 
@@ -22,3 +23,15 @@ def check(rho=1.0, x=0.5, v=0.0, kind=MOVING, periodic=False):
     ({"rho": -3.0, "kind": WALL}, (-1, 0))])
 def test_first_bad_particle(change, expected):
     assert tuple(check(**change)) == expected
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_first_coincident_pair_finds_a_particle_twice_and_nothing_on_a_lattice(dim):
+    axes = np.meshgrid(*([np.arange(4.0)] * dim), indexing="ij")
+    x = np.stack([a.ravel() for a in axes], axis=1)
+    n = len(x)
+    start, nbr = neighbour_lists(x, np.arange(n), np.zeros(n, np.int8), n, 1.5, np.full(dim, -1.0))
+    assert first_coincident_pair(n, start, nbr, x) == (-1, -1)
+    x = np.concatenate([x, x[5:6]])  # particle 5 again, as the last one
+    start, nbr = neighbour_lists(x, np.arange(n + 1), np.zeros(n + 1, np.int8), n + 1, 1.5, np.full(dim, -1.0))
+    assert first_coincident_pair(n + 1, start, nbr, x) == (5, n)

@@ -186,3 +186,18 @@ def test_a_case_too_large_for_the_node_is_refused_with_its_count(existing_output
     result = mpisph(["dam_break_2d", "--set", f"dp={dp:.4g}", "--out", out, "--quiet"], ranks=2, timeout=300)
     assert_clean_error(result, "the case has", "on this node's 2 ranks", "GB available")
     assert marker.read_bytes() == b"earlier result"
+
+
+def test_two_particles_at_the_same_place_stop_the_run_with_one_line(tmp_path):
+    """Every pair sum divides by the pair's distance: a drop with one particle twice stops at its
+    first configuration, naming both, instead of a ZeroDivisionError from a kernel."""
+    src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "elliptical_drop.py")).read()
+    old = '    velocity = p.A0 * np.stack'
+    assert old in src
+    (tmp_path / "drop.py").write_text(src.replace(old, "    x = np.concatenate([x, x[:1]])\n" + old))
+    result = mpisph([tmp_path / "drop.py", *TINY, "--out", tmp_path / "o"], timeout=120)
+    assert result.returncode == 3
+    assert "Traceback" not in result.stderr
+    line = result.stderr.strip().splitlines()[-1]
+    for words in ("blow-up at step 0", "two particles at the same place", "particles 0 and", "last frame written"):
+        assert words in line, line
