@@ -344,3 +344,25 @@ def earth_pressure(phi_deg, cohesion):
     ka, kp = np.tan(np.pi / 4 - phi / 2) ** 2, np.tan(np.pi / 4 + phi / 2) ** 2
     return {"active": (ka, -2.0 * cohesion * np.sqrt(ka)), "at rest": (1.0 - np.sin(phi), 0.0),
             "passive": (kp, 2.0 * cohesion * np.sqrt(kp))}
+
+
+# The critical height of a vertical cut in a Mohr-Coulomb soil on a rigid base: Chen (1975), Limit
+# Analysis and Soil Plasticity (Elsevier), the upper bound of a log-spiral mechanism through the
+# toe, gamma H_c / c = 3.83 tan(45 deg + phi / 2) (Culmann's plane wedge gives 4 for 3.83). Limit
+# analysis assumes associated flow. For a dilatancy psi below phi, Drescher & Detournay (1993,
+# Geotechnique 43, 443-456) bound the collapse by an associated soil of c* = eta c and tan phi* = eta
+# tan phi, eta = cos psi cos phi / (1 - sin psi sin phi). mpisph's Drucker-Prager cone is fitted to
+# Mohr-Coulomb in plane strain (000_ Eq. 14), so an associated soil collapses at the same heights.
+VERTICAL_CUT_LOG_SPIRAL = 3.83
+
+
+def vertical_cut_critical_height(cohesion, phi_deg, gamma, psi_deg=None):
+    """H_c of the comment above [m]: associated flow without ``psi_deg``, else Drescher & Detournay's
+    reduced strength for that dilatancy (the same as associated for psi = phi, and for phi = 0)."""
+    phi = np.radians(phi_deg)
+    eta = 1.0
+    if psi_deg is not None:
+        psi = np.radians(psi_deg)
+        eta = np.cos(psi) * np.cos(phi) / (1.0 - np.sin(psi) * np.sin(phi))
+    phi_star = np.arctan(eta * np.tan(phi))
+    return VERTICAL_CUT_LOG_SPIRAL * eta * cohesion / gamma * np.tan(np.pi / 4 + phi_star / 2)

@@ -1,6 +1,7 @@
 """The reference solutions reproduce the figures the engine issue quotes."""
 
 import importlib.util
+import math
 
 import numpy as np
 import pytest
@@ -182,3 +183,22 @@ def test_uniform_flow_between_walls_balances_every_depth():
     expected = np.tan(np.radians(theta)) - rate * above[inside] / p[inside]
     assert np.ptp(expected) > 0.03  # the walls matter
     np.testing.assert_allclose([friction(i, mat.params) for i in I[inside]], expected, rtol=0, atol=1e-8)
+
+
+def test_the_vertical_cut_critical_height_and_its_non_associated_reduction():
+    """Chen's log-spiral bound 3.83 (c / gamma) tan(45 + phi / 2); Drescher & Detournay's reduction
+    leaves it unchanged where it must (psi = phi, and phi = 0 for any psi) and lowers it below."""
+    c, gamma = 5.0e3, 1850.0 * 9.8
+    assert references.vertical_cut_critical_height(c, 20.0, gamma) == pytest.approx(
+        3.83 * c / gamma * math.tan(math.radians(55.0)), rel=1e-12)
+    assert references.vertical_cut_critical_height(c, 20.0, gamma, psi_deg=20.0) == pytest.approx(
+        references.vertical_cut_critical_height(c, 20.0, gamma), rel=1e-12)
+    assert references.vertical_cut_critical_height(c, 0.0, gamma, psi_deg=0.0) == pytest.approx(3.83 * c / gamma,
+                                                                                                rel=1e-12)
+    # psi = 0: eta = cos 20 deg, c* = 4698 Pa, phi* = 18.88 deg
+    eta = math.cos(math.radians(20.0))
+    phi_star = math.degrees(math.atan(eta * math.tan(math.radians(20.0))))
+    assert phi_star == pytest.approx(18.88, abs=0.005)
+    assert references.vertical_cut_critical_height(c, 20.0, gamma, psi_deg=0.0) == pytest.approx(
+        3.83 * eta * c / gamma * math.tan(math.radians(45.0 + phi_star / 2)), rel=1e-12)
+    assert references.vertical_cut_critical_height(c, 20.0, gamma, psi_deg=0.0) == pytest.approx(1.388, abs=5e-4)

@@ -1,0 +1,69 @@
+"""Whether vertical cuts stand or fail, beside the critical height of limit analysis.
+
+    .venv/bin/python -m mpisph vertical_cut --set H=1.2 [density_reinit=free_surface] --t-end 3 --output-interval 0.25 --out RUN
+    .venv/bin/python scripts/cut_stability.py RUN [RUN ...] [--at 1 3]
+
+Per run (a ``vertical_cut``, any scheme): the cut's height H (its top particle's centre plus dp / 2)
+over the critical height H_c of references.vertical_cut_critical_height, for associated flow and for
+the run's dilatancy; the peak kinetic energy and when it came (diagnostics.csv); at each time of
+``--at`` the 99th percentile of the particles' displacements from the first frame over H; and the
+density range of the last frame over rho0. A cut that stands keeps the displacement of its elastic
+unloading, a few hundredths of H, and its kinetic energy peaks in the first tenth of a second; one
+that fails moves a wedge by tenths of H and its energy peaks when the wedge slides.
+"""
+
+import argparse
+import csv
+import os
+
+import numpy as np
+
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.references import vertical_cut_critical_height
+
+
+def displacement_share(first, frame, height):
+    """The 99th percentile of the moving particles' displacements from ``first`` to ``frame`` (both
+    read by gid, walls left out) over ``height``."""
+    return float(np.percentile(np.linalg.norm(frame["x"] - first["x"], axis=1), 99.0)) / height
+
+
+def kinetic_energy_peak(run):
+    """(peak kinetic energy [J], its time [s]) from the run's diagnostics.csv."""
+    with open(os.path.join(run, "diagnostics.csv")) as f:
+        rows = [(float(r["kinetic_energy"]), float(r["t"])) for r in csv.DictReader(f)]
+    return max(rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--at", type=float, nargs="+", default=[1.0, 3.0], help="times [s] of the displacements")
+    a = ap.parse_args()
+    print("| run | H [m] | H / H_c (associated) | H / H_c (psi) | peak kinetic energy [J] at [s] | "
+          + " | ".join(f"99 % displacement / H at {t:g} s" for t in a.at) + " | rho / rho0 at the end |")
+    print("|---" * (6 + len(a.at)) + "|")
+    for run in a.runs:
+        paths = list_frames(run)
+        first = read_frame(paths[0])
+        p = first["params"]
+        height = float(first["x"][:, 1].max()) + 0.5 * float(p["dp"])
+        gamma = float(p["rho0"]) * float(p["g"])
+        h_c = vertical_cut_critical_height(float(p["cohesion"]), float(p["phi"]), gamma)
+        h_c_psi = vertical_cut_critical_height(float(p["cohesion"]), float(p["phi"]), gamma, float(p["psi"]))
+        frames = {}
+        for path in paths[1:]:
+            frame = read_frame(path)
+            for t in a.at:
+                if abs(frame["t"] - t) < 1e-9:
+                    frames[t] = displacement_share(first, frame, height)
+            last = frame
+        energy, when = kinetic_energy_peak(run)
+        shares = " | ".join(f"{frames[t]:.3f}" if t in frames else "-" for t in a.at)
+        rho = last["rho"] / float(p["rho0"])
+        print(f"| {run} | {height:.3f} | {height / h_c:.3f} | {height / h_c_psi:.3f} | {energy:.3g} at {when:.2f} | "
+              f"{shares} | {rho.min():.2f}-{rho.max():.2f} |")
+
+
+if __name__ == "__main__":
+    main()
