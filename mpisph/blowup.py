@@ -4,7 +4,6 @@ outside the domain, or two particles at the same place (which no pair sum can di
 import math
 
 import numpy as np
-
 from numba import njit
 
 from .particles import MOVING
@@ -39,8 +38,8 @@ def first_bad_particle(n, kind, x, v, rho, lo, hi, periodic):
 @njit(cache=True)
 def first_coincident_pair(n, start, nbr, x):
     """(i, j) of the first owned particle i in [0, n) with a neighbour j at distance 0, whose pair
-    terms would divide by it; (-1, -1) if none. The search for the pair runs only when the
-    smallest squared distance, a branch-free reduction over the lists, is 0."""
+    terms would divide by it; (-1, -1) if none. The pass that finds the pair runs only when the
+    smallest squared distance over the lists, a plain reduction, is 0."""
     dim = x.shape[1]
     closest = np.inf
     for i in range(n):
