@@ -47,7 +47,7 @@ trap 'rm -rf "$LOGDIR"' EXIT
 # Prints "<passed> <failed+errors>"; "0 0" when there is no summary line.
 pytest_counts() {
     local line p f e
-    line="$(grep -aE '([0-9]+ (passed|failed|errors?|skipped|deselected|xfailed|xpassed)|no tests ran)[^ ]* in [0-9.]+s' "$1" 2>/dev/null | tail -n 1 || true)"
+    line="$(grep -aE '([0-9]+ (passed|failed|errors?|skipped|deselected|xfailed|xpassed|warnings?)|no tests ran)[^ ]* in [0-9.]+s' "$1" 2>/dev/null | tail -n 1 || true)"
     p="$(grep -oE '[0-9]+ passed' <<< "$line" | grep -oE '[0-9]+' || true)"
     f="$(grep -oE '[0-9]+ failed' <<< "$line" | grep -oE '[0-9]+' || true)"
     e="$(grep -oE '[0-9]+ errors?' <<< "$line" | grep -oE '[0-9]+' || true)"
