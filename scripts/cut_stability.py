@@ -13,11 +13,11 @@ that fails moves a wedge by tenths of H and its energy peaks when the wedge slid
 """
 
 import argparse
-import csv
 import os
 
 import numpy as np
 
+from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.references import vertical_cut_critical_height
 
@@ -30,9 +30,9 @@ def displacement_share(first, frame, height):
 
 def kinetic_energy_peak(run):
     """(peak kinetic energy [J], its time [s]) from the run's diagnostics.csv."""
-    with open(os.path.join(run, "diagnostics.csv")) as f:
-        rows = [(float(r["kinetic_energy"]), float(r["t"])) for r in csv.DictReader(f)]
-    return max(rows)
+    diag = read_diagnostics(os.path.join(run, "diagnostics.csv"))
+    k = int(np.argmax(diag["kinetic_energy"]))
+    return float(diag["kinetic_energy"][k]), float(diag["t"][k])
 
 
 def main():
