@@ -35,27 +35,26 @@ def first_bad_particle(n, kind, x, v, rho, lo, hi, periodic):
     return -1, 0
 
 
+@njit(inline="always")
+def _squared_distance(x, i, j):
+    d0, d1 = x[i, 0] - x[j, 0], x[i, 1] - x[j, 1]
+    d2 = x[i, 2] - x[j, 2] if x.shape[1] == 3 else 0.0
+    return d0 * d0 + d1 * d1 + d2 * d2
+
+
 @njit(cache=True)
 def first_coincident_pair(n, start, nbr, x):
     """(i, j) of the first owned particle i in [0, n) with a neighbour j at distance 0, whose pair
     terms would divide by it; (-1, -1) if none. The pass that finds the pair runs only when the
     smallest squared distance over the lists, a plain reduction, is 0."""
-    dim = x.shape[1]
     closest = np.inf
     for i in range(n):
         for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            d0, d1 = x[i, 0] - x[j, 0], x[i, 1] - x[j, 1]
-            d2 = x[i, 2] - x[j, 2] if dim == 3 else 0.0
-            closest = min(closest, d0 * d0 + d1 * d1 + d2 * d2)
+            closest = min(closest, _squared_distance(x, i, nbr[s]))
     if closest > 0.0:
         return -1, -1
     for i in range(n):
         for s in range(start[i], start[i + 1]):
-            j = nbr[s]
-            same = True
-            for a in range(dim):
-                same = same and x[i, a] == x[j, a]
-            if same:
-                return i, j
+            if _squared_distance(x, i, nbr[s]) == 0.0:
+                return i, nbr[s]
     return -1, -1
