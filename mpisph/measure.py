@@ -276,6 +276,24 @@ def surface_profile(frame, dp):
     return left[occupied] + 0.5 * dp, top[occupied]
 
 
+def cut_height(frame):
+    """The height of a cut (or of any body on a floor at y = 0): its top particle's centre plus half
+    of the frame's spacing ``dp``."""
+    return float(frame["x"][:, 1].max()) + 0.5 * float(frame["params"]["dp"])
+
+
+def displacement_percentile(first, frame, share=99.0):
+    """The ``share`` percentile of the particles' displacements from ``first`` to ``frame`` [m], both
+    read by gid without walls."""
+    return float(np.percentile(np.linalg.norm(frame["x"] - first["x"], axis=1), share))
+
+
+def kinetic_energy_peak(diag):
+    """(peak kinetic energy [J], its time [s]) of a run's diagnostics (io.diagnostics.read_diagnostics)."""
+    k = int(np.argmax(diag["kinetic_energy"]))
+    return float(diag["kinetic_energy"][k]), float(diag["t"][k])
+
+
 def max_speed(frame):
     """The largest speed of a moving particle in ``frame`` (read with its walls or without)."""
     return float(np.linalg.norm(frame["v"][frame["kind"] == MOVING], axis=1).max())

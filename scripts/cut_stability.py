@@ -7,32 +7,20 @@ Per run (a ``vertical_cut``, any scheme): the cut's height H (its top particle's
 over the critical height H_c of references.vertical_cut_critical_height, for associated flow and for
 the run's dilatancy; the peak kinetic energy and when it came (diagnostics.csv); at each time of
 ``--at`` the 99th percentile of the particles' displacements from the first frame over H; and the
-density range of the last frame over rho0. A cut that stands keeps the displacement of its elastic
-unloading, a few hundredths of H, and its kinetic energy peaks in the first tenth of a second; one
-that fails moves a wedge by tenths of H and its energy peaks when the wedge slides.
+density range of the last frame over rho0; and whether it stood or failed, by validation/cuts.py's
+``verdict`` on the energy's peak and the last frame's displacement. A cut that stands keeps the
+displacement of its elastic unloading, a few hundredths of H, and its kinetic energy peaks in the first
+tenth of a second; one that fails moves a wedge by tenths of H and its energy peaks when the wedge slides.
 """
 
 import argparse
 import os
 
-import numpy as np
-
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
+from mpisph.measure import cut_height, displacement_percentile, kinetic_energy_peak
 from mpisph.references import vertical_cut_critical_height
-
-
-def displacement_share(first, frame, height):
-    """The 99th percentile of the moving particles' displacements from ``first`` to ``frame`` (both
-    read by gid, walls left out) over ``height``."""
-    return float(np.percentile(np.linalg.norm(frame["x"] - first["x"], axis=1), 99.0)) / height
-
-
-def kinetic_energy_peak(run):
-    """(peak kinetic energy [J], its time [s]) from the run's diagnostics.csv."""
-    diag = read_diagnostics(os.path.join(run, "diagnostics.csv"))
-    k = int(np.argmax(diag["kinetic_energy"]))
-    return float(diag["kinetic_energy"][k]), float(diag["t"][k])
+from validation.cuts import verdict
 
 
 def main():
@@ -41,13 +29,13 @@ def main():
     ap.add_argument("--at", type=float, nargs="+", default=[1.0, 3.0], help="times [s] of the displacements")
     a = ap.parse_args()
     print("| run | H [m] | H / H_c (associated) | H / H_c (psi) | peak kinetic energy [J] at [s] | "
-          + " | ".join(f"99 % displacement / H at {t:g} s" for t in a.at) + " | rho / rho0 at the end |")
-    print("|---" * (6 + len(a.at)) + "|")
+          + " | ".join(f"99 % displacement / H at {t:g} s" for t in a.at) + " | rho / rho0 at the end | verdict |")
+    print("|---" * (7 + len(a.at)) + "|")
     for run in a.runs:
         paths = list_frames(run)
         first = read_frame(paths[0])
         p = first["params"]
-        height = float(first["x"][:, 1].max()) + 0.5 * float(p["dp"])
+        height = cut_height(first)
         gamma = float(p["rho0"]) * float(p["g"])
         h_c = vertical_cut_critical_height(float(p["cohesion"]), float(p["phi"]), gamma)
         h_c_psi = vertical_cut_critical_height(float(p["cohesion"]), float(p["phi"]), gamma, float(p["psi"]))
@@ -56,13 +44,14 @@ def main():
             frame = read_frame(path)
             for t in a.at:
                 if abs(frame["t"] - t) < 1e-9:
-                    frames[t] = displacement_share(first, frame, height)
+                    frames[t] = displacement_percentile(first, frame) / height
             last = frame
-        energy, when = kinetic_energy_peak(run)
+        energy, when = kinetic_energy_peak(read_diagnostics(os.path.join(run, "diagnostics.csv")))
+        outcome = verdict(when, displacement_percentile(first, last) / height)
         shares = " | ".join(f"{frames[t]:.3f}" if t in frames else "-" for t in a.at)
         rho = last["rho"] / float(p["rho0"])
         print(f"| {run} | {height:.3f} | {height / h_c:.3f} | {height / h_c_psi:.3f} | {energy:.3g} at {when:.2f} | "
-              f"{shares} | {rho.min():.2f}-{rho.max():.2f} |")
+              f"{shares} | {rho.min():.2f}-{rho.max():.2f} | {outcome} |")
 
 
 if __name__ == "__main__":

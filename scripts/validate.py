@@ -16,7 +16,7 @@ import argparse
 
 from mpisph import references
 
-from validation import (beam, figures, fluids, incline, lube_axisymmetric, lube_planar, page, runs,
+from validation import (beam, cuts, figures, fluids, incline, lube_axisymmetric, lube_planar, page, runs,
                         soil_remedies, soils)
 
 VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remedies": fluids.elliptical_drop_remedies,
@@ -28,6 +28,7 @@ VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remed
                "oscillating_beam_sph_as": beam.oscillating_beam_sph_as,
                "column_collapse_2d": soils.column_collapse, "cohesive_failure_2d": soils.cohesive_failure,
                "remedies_cuts": soil_remedies.remedies_cuts, "remedies_cube_3d": soil_remedies.remedies_cube_3d,
+               "vertical_cut_critical_height": cuts.vertical_cut_critical_height,
                "soil_cylinder_impact": soils.soil_cylinder,
                "inclined_plane": incline.inclined_plane, "inclined_plane_steady": incline.inclined_plane_steady,
                "inclined_plane_deep": incline.inclined_plane_deep,

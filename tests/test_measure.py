@@ -207,3 +207,24 @@ def test_jostle_pressure_is_nil_for_a_shear_and_follows_a_checkerboards_square()
     np.testing.assert_allclose(got, 2.0 * a * a * (1.0 - m) ** 2 / 2.0, rtol=1e-10)
     frame["v"][:, 1] = 0.0
     assert np.max(measure.jostle_pressure(frame, kernel)[inner]) < 1e-24
+
+
+def test_a_cuts_height_adds_half_a_spacing_to_its_top_centre():
+    """A 4 x 6 block of the lattice on the floor: its top centres at 5.5 dp, its height 6 dp."""
+    assert measure.cut_height({"x": lattice(4, 6), "params": {"dp": DP}}) == pytest.approx(6 * DP, rel=1e-12)
+
+
+def test_the_displacement_percentile_is_that_of_each_particles_own_displacement():
+    """Particle k of 1000 moves k mm up: the 99th percentile of 0, 1, ..., 999 mm, whatever the
+    particles' places."""
+    x = np.stack([np.arange(1000.0), np.zeros(1000)], axis=1)
+    moved = x.copy()
+    moved[:, 1] = np.linspace(0.0, 0.999, 1000)
+    share = measure.displacement_percentile({"x": x}, {"x": moved})
+    assert share == np.percentile(np.linspace(0.0, 0.999, 1000), 99.0)
+    assert abs(share - 0.989) < 1e-3
+
+
+def test_the_kinetic_energy_peak_and_its_time():
+    diag = {"t": np.array([0.0, 0.1, 0.5, 1.0]), "kinetic_energy": np.array([0.0, 5.0, 7.5, 0.2])}
+    assert measure.kinetic_energy_peak(diag) == (7.5, 0.5)

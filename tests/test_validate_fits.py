@@ -88,3 +88,14 @@ def test_clustered_particles_that_utvf_leaves_in_place(validation):
     frame = {"x": x, "kind": kind, "gid": np.arange(n), "mass": np.full(n, dp * dp), "rho": np.ones(n),
              "surface": classes, "div_r": div_r, "params": {"dp": dp}}
     assert validation.fluids._unshifted_share(frame) == (6, 4)
+
+
+def test_a_cut_stands_or_fails_only_when_its_energy_peak_and_its_displacement_agree():
+    """validation/cuts.py: an early peak with a small displacement stands, a late one with a large
+    displacement fails, and either sign alone is at the edge (docs/CUTS.md's 1.45 m cut at dp = 0.0125 m
+    peaked at 0.25 s and moved 0.142 H)."""
+    cuts = load_package("validation.cuts")
+    assert cuts.verdict(0.08, 0.054) == "stands"
+    assert cuts.verdict(0.51, 0.193) == "fails"
+    assert cuts.verdict(0.25, 0.142) == "at the edge"
+    assert cuts.verdict(0.10, 0.20) == "at the edge"
