@@ -19,7 +19,7 @@ its Mach number.
 import dataclasses
 import math
 
-from mpisph.case import Body, Case, MuIGranular, Param, Wall, density_reinit_param
+from mpisph.case import ANGLE, Body, Case, MuIGranular, Param, Wall, density_reinit_param
 from mpisph.geometry import bed, box, support_layers
 from mpisph.granular_flow import mach_compressibility, mu_i_params, mu_i_scheme, side_wall_params, side_walls
 from mpisph.references import inclined_plane_surface_velocity, inclined_plane_velocity_between_walls
@@ -32,8 +32,8 @@ PARAMS = {
     "g": Param(9.81, "m/s^2", "gravity", positive=True),
     "rho_s0": Param(800.0, "kg/m^3", "grain density unconfined (004_ Table 2)", positive=True),
     "d": Param(0.5e-3, "m", "grain size (glass beads, 004_ Table 1)", positive=True),
-    "mu_s_deg": Param(20.90, "deg", "static friction angle, mu_s = tan (004_ Table 1)"),
-    "mu_2_deg": Param(32.76, "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)"),
+    "mu_s_deg": Param(20.90, "deg", "static friction angle, mu_s = tan (004_ Table 1)", bounds=ANGLE),
+    "mu_2_deg": Param(32.76, "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)", bounds=ANGLE),
     "I_0": Param(0.279, "-", "reference inertial number (004_ Sec. 2.1)", positive=True),
     "phi_max": Param(0.6, "-", "volume fraction at rest (Eq. 8)", positive=True),
     "phi_min": Param(0.5, "-", "lowest volume fraction of the dense regime (Eq. 8)", positive=True),

@@ -5,7 +5,7 @@ H_over_dp defaults to 20; 000_ Table 1 runs 30 and its Figs. 11 and 13 run 10 (`
 
 import numpy as np
 
-from mpisph.case import SOLID_PARAMS, Body, Case, ElasticSolid, Param, classic_viscosity_params, scheme_keywords
+from mpisph.case import POISSON, SOLID_PARAMS, Body, Case, ElasticSolid, Param, classic_viscosity_params, scheme_keywords
 from mpisph.geometry import box, support_layers
 
 KL = 1.875  # first root of cos(kL) cosh(kL) = -1
@@ -16,7 +16,7 @@ PARAMS = {
     "H_over_dp": Param(20, "-", "particles across the thickness (dp = H / H_over_dp)", positive=True),
     "rho0": Param(1000.0, "kg/m^3", "density", positive=True),
     "E": Param(2.0e6, "Pa", "Young's modulus", positive=True),
-    "nu": Param(0.3975, "-", "Poisson's ratio", positive=True),
+    "nu": Param(0.3975, "-", "Poisson's ratio", positive=True, bounds=POISSON),
     "v_f": Param(0.05, "-", "initial tip speed over the sound speed (000_ Eq. 45)", positive=True),
     "shear_force": Param("corrected", "-", "the shear part of the momentum sum: B-corrected (conserves kinetic "
                          "+ strain energy, physics/solid.py) or as_printed (000_ Eq. 22)",

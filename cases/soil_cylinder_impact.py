@@ -7,9 +7,11 @@ maximum spread (002_ Fig. 10) is twice the front. The step follows the CFL
 condition; ``--set max_time_step=1e-6`` caps it at 002_ Table 2's.
 """
 
+import math
+
 import numpy as np
 
-from mpisph.case import SOLID_PARAMS, Body, Case, Front, Param, Wall
+from mpisph.case import ANGLE, POISSON, SOLID_PARAMS, Body, Case, Front, Param, Wall
 from mpisph.geometry import bed_layers, depth, disk, support_layers
 from mpisph.kernels import KERNELS
 from mpisph.soil import drucker_prager, scheme_choice, scheme_params
@@ -21,10 +23,10 @@ PARAMS = {
     "dp": Param(0.0005, "m", "particle spacing (002_ Table 2)", positive=True),
     "rho0": Param(1850.0, "kg/m^3", "bulk density", positive=True),  # 002_ Table 1
     "E": Param(5.0e6, "Pa", "Young's modulus", positive=True),
-    "nu": Param(0.2, "-", "Poisson's ratio", positive=True),
-    "cohesion": Param(3.0e4, "Pa", "cohesion c"),
-    "phi": Param(22.0, "deg", "friction angle"),
-    "psi": Param(0.0, "deg", "dilatancy angle (002_: zero)"),
+    "nu": Param(0.2, "-", "Poisson's ratio", positive=True, bounds=POISSON),
+    "cohesion": Param(3.0e4, "Pa", "cohesion c", bounds=(0.0, math.inf)),
+    "phi": Param(22.0, "deg", "friction angle", bounds=ANGLE),
+    "psi": Param(0.0, "deg", "dilatancy angle (002_: zero), at most phi", bounds=ANGLE),
     "g": Param(9.8, "m/s^2", "gravity", positive=True),
     **{**SOLID_PARAMS, "stabiliser": SOLID_PARAMS["stabiliser"].with_default("none")},
     **{**scheme_params(alpha=1.0, beta=1.0),  # 002_ Table 2

@@ -151,6 +151,22 @@ def _prepare_out_dir(comm, path, start, keep_later=False):
         raise InputError(problem)
 
 
+SPACINGS = ("dp", "nx", "H_over_dp")  # the parameters by which the cases set their particle spacing
+
+
+def _check_restart(frame, t, written, values):
+    """Refuse a restart from ``frame`` (written at time ``t`` with the parameters ``written``) that
+    could not go on with the parameters ``values``: an end time not after ``t``, or another spacing
+    than the one its particles were placed at (the smoothing length and the wall layers follow it)."""
+    if not values["t_end"] > t:
+        raise InputError(f"t_end = {values['t_end']:g} s is not after the time of {frame}, {t:g} s: "
+                         "give a later --t-end")
+    for name in SPACINGS:
+        if name in values and values[name] != written[name]:
+            raise InputError(f"a restart keeps the spacing of the particles of {frame}, {name} = {written[name]:g}, "
+                             f"not {name} = {values[name]:g}: start a new run to change it")
+
+
 def run(args, comm):
     from . import case as cases
     from .gauges import GaugeRecorder
@@ -170,10 +186,12 @@ def run(args, comm):
     module = cases.load_case_module(args.case)
     overrides = _overrides(args)
     if args.restart:
-        written = read_rows(args.restart, 0, 0)["params"]  # the frame's attributes, no particle
+        frame = read_rows(args.restart, 0, 0)  # the frame's attributes, no particle
+        written = frame["params"]
         if written.get("case") != args.case:
             raise InputError(f"{args.restart} was written by case {written.get('case')!r}, not {args.case!r}")
         values = cases.resolve_params(module, overrides, base=written)
+        _check_restart(args.restart, frame["t"], written, values)
     else:
         values = cases.resolve_params(module, overrides)
     values["case"] = args.case

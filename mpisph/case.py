@@ -9,6 +9,7 @@ which receives the validated parameters as attributes and returns a
 import dataclasses
 import difflib
 import importlib.util
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import SimpleNamespace
@@ -33,7 +34,8 @@ CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 class Param:
     """A case parameter: default value (its type is the parameter's type), unit, meaning; with
     ``stabilisers``, a value may also be several of the choices but "none" joined by "+", which
-    stabilisers.stabiliser_names checks as a combination."""
+    stabilisers.stabiliser_names checks as a combination; with ``bounds`` (low, high), a number
+    must lie in [low, high). A float must be finite."""
 
     default: object
     unit: str
@@ -41,6 +43,7 @@ class Param:
     choices: tuple = ()
     positive: bool = False
     stabilisers: bool = False
+    bounds: tuple = ()
 
     @property
     def type(self):
@@ -77,10 +80,17 @@ class Param:
                 raise InputError(f"parameter {name} must be one of {', '.join(map(str, self.choices))}{combined}, "
                                  f"not {value!r}")
             stabiliser_names(value)
+        if self.type is float and not math.isfinite(value):
+            raise InputError(f"parameter {name} must be a finite number, not {value!r}")
         if self.positive and not value > 0:
             raise InputError(f"parameter {name} must be positive, not {value!r}")
+        if self.bounds and not self.bounds[0] <= value < self.bounds[1]:
+            raise InputError(f"parameter {name} must lie in [{self.bounds[0]:g}, {self.bounds[1]:g}), not {value!r}")
         return value
 
+
+POISSON = (0.0, 0.5)  # bounds of a Poisson's ratio: up to 1/2, where the bulk modulus diverges
+ANGLE = (0.0, 90.0)  # bounds of a friction or dilatancy angle [deg]
 
 RUN_PARAMS = {
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
@@ -90,7 +100,7 @@ RUN_PARAMS = {
     "time_stepping": Param("dual", "-", "dual: 001_ Eqs. 9-11; single: 000_ Eq. 38",
                            choices=("dual", "single")),
     "max_time_step": Param(0.0, "s", "upper bound of the time step, 0: none (002_ steps at 1e-6 s and 5e-5 s "
-                           "in its Tables 2 and 4)"),
+                           "in its Tables 2 and 4)", bounds=(0.0, math.inf)),
     "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean work per rank - 1 exceeds this "
                                  "(work: neighbour pairs)", positive=True),
     "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",

@@ -18,7 +18,7 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 
 import math
 
-from .case import Body, Case, Front, MuIGranular, Param, Wall, density_reinit_param
+from .case import ANGLE, Body, Case, Front, MuIGranular, Param, Wall, density_reinit_param
 from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
@@ -35,8 +35,8 @@ def column_params(a, dp, m_0):
         "g": Param(9.81, "m/s^2", "gravity", positive=True),
         "rho_s0": Param(2600.0, "kg/m^3", "grain density unconfined (004_ Sec. 5.2)", positive=True),
         "d": Param(SAND["d"], "m", "grain size (004_ Sec. 5.2)", positive=True),
-        "mu_s_deg": Param(SAND["mu_s_deg"], "deg", "static friction angle, mu_s = tan (004_ Table 1)"),
-        "mu_2_deg": Param(SAND["mu_2_deg"], "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)"),
+        "mu_s_deg": Param(SAND["mu_s_deg"], "deg", "static friction angle, mu_s = tan (004_ Table 1)", bounds=ANGLE),
+        "mu_2_deg": Param(SAND["mu_2_deg"], "deg", "limiting friction angle, mu_2 = tan (004_ Table 1)", bounds=ANGLE),
         "I_0": Param(SAND["I_0"], "-", "reference inertial number (004_ Sec. 2.1)", positive=True),
         "phi_max": Param(0.6, "-", "volume fraction at rest (Eq. 8)", positive=True),
         "phi_min": Param(0.5, "-", "lowest volume fraction of the dense regime (Eq. 8)", positive=True),

@@ -4,7 +4,7 @@ walls across the plane of a 2D run."""
 
 import math
 
-from .case import Param
+from .case import ANGLE, Param
 from .errors import InputError
 from .physics.implicit_viscosity import TOLERANCE
 from .physics.mu_i import (LAW_PRESSURES, LAW_STRAIN_RATES, PRESSURE_FORMS, VISCOSITY_MEANS, VISCOUS_FORMS,
@@ -81,7 +81,8 @@ def side_wall_params():
     return {
         "channel_width": Param(0.0, "m", "gap between two side walls across the plane, whose friction the grains "
                                "feel (physics/side_walls.py); 0: none, plane strain"),
-        "wall_friction_deg": Param(0.0, "deg", "friction angle of the side walls on the grains, mu_w = tan"),
+        "wall_friction_deg": Param(0.0, "deg", "friction angle of the side walls on the grains, mu_w = tan",
+                                   bounds=ANGLE),
     }
 
 

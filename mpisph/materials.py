@@ -73,6 +73,11 @@ class DruckerPrager(ElasticConstants):
     phi: float = 30.0
     psi: float = 0.0
 
+    def __post_init__(self):
+        if self.psi > self.phi:
+            raise InputError(f"Drucker-Prager soil: the dilatancy angle psi ({self.psi:g} deg) must not exceed the "
+                             f"friction angle phi ({self.phi:g} deg)")
+
     @staticmethod
     def _alpha(angle_deg):
         t = math.tan(math.radians(angle_deg))

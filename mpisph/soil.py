@@ -10,9 +10,11 @@ long, in 3D a cube standing in the middle of a square floor with a low rim. ``co
 is a layer filling a tank of free-slip walls, the test case of docs/FLUME.md.
 """
 
+import math
+
 import numpy as np
 
-from .case import (SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params,
+from .case import (ANGLE, POISSON, SOLID_PARAMS, Body, Case, DruckerPrager, Param, Wall, classic_viscosity_params,
                    density_reinit_param, limiter_param, scheme_keywords)
 from .geometry import block, depth_outside, lattice_mismatch, support_layers, walls_around
 from .physics.drucker_prager import INITIAL_STRESSES, STRESS_DIFFUSIONS, geostatic_stress
@@ -34,10 +36,10 @@ def soil_params(rho0, E, nu, cohesion, phi, psi=0.0, density_reinit="none", at_r
     return {
         "rho0": Param(rho0, "kg/m^3", "bulk density", positive=True),
         "E": Param(E, "Pa", "Young's modulus", positive=True),
-        "nu": Param(nu, "-", "Poisson's ratio", positive=True),
-        "cohesion": Param(cohesion, "Pa", "cohesion c"),
-        "phi": Param(phi, "deg", "friction angle"),
-        "psi": Param(psi, "deg", "dilatancy angle"),
+        "nu": Param(nu, "-", "Poisson's ratio", positive=True, bounds=POISSON),
+        "cohesion": Param(cohesion, "Pa", "cohesion c", bounds=(0.0, math.inf)),
+        "phi": Param(phi, "deg", "friction angle", bounds=ANGLE),
+        "psi": Param(psi, "deg", "dilatancy angle, at most phi", bounds=ANGLE),
         "g": Param(9.8, "m/s^2", "gravity", positive=True),
         "density_reinit": density_reinit_param(density_reinit, why="000_ evolves the density by Eq. 16 alone, "
                                                "the authors' code sums it for soils (docs/FLUME.md)"),

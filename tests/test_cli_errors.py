@@ -51,6 +51,16 @@ def existing_output(tmp_path):
                                                  "GB available"]),
     (["vertical_cut", "--set", "stabiliser=adaptive_kernel", "density_reinit=inner"],
      ["adaptive_kernel needs density_reinit=none, not 'inner'", "4.3 % above rho0 in 2D"]),
+    (["vertical_cut", "--set", "nu=0.5"], ["nu must lie in [0, 0.5), not 0.5"]),
+    (["oscillating_beam", "--set", "nu=0.7"], ["nu must lie in [0, 0.5), not 0.7"]),
+    (["vertical_cut", "--set", "phi=95"], ["phi must lie in [0, 90), not 95.0"]),
+    (["vertical_cut", "--set", "phi=nan"], ["phi must be a finite number, not nan"]),
+    (["vertical_cut", "--set", "cohesion=-1"], ["cohesion must lie in [0, inf), not -1.0"]),
+    (["vertical_cut", "--set", "psi=30"], ["dilatancy angle psi (30 deg) must not exceed the friction angle phi (20 deg)"]),
+    (["elliptical_drop", "--set", "radius=inf"], ["radius must be a finite number, not inf"]),
+    (["elliptical_drop", "--t-end", "inf"], ["t_end must be a finite number, not inf"]),
+    (["elliptical_drop", "--set", "max_time_step=-1"], ["max_time_step must lie in [0, inf), not -1.0"]),
+    (["lube_collapse_2d", "--set", "mu_s_deg=95"], ["mu_s_deg must lie in [0, 90), not 95.0"]),
 ])
 def test_bad_parameters(args, fragments, existing_output):
     out, marker = existing_output
@@ -129,6 +139,23 @@ def test_restart_frame_of_another_case(good_frame, existing_output):
     result = mpisph(["taylor_green", "--restart", good_frame, "--out", out], timeout=120)
     assert_clean_error(result, "written by case 'elliptical_drop'")
     assert marker.read_bytes() == b"earlier result"
+
+
+@pytest.mark.parametrize("args, fragments", [
+    (["--t-end", "0.0002"], ["t_end = 0.0002 s is not after the time of", "0.0002 s: give a later --t-end"]),
+    (["--t-end", "0.0001"], ["t_end = 0.0001 s is not after"]),
+    (["--set", "dp=0.1"], ["a restart keeps the spacing of the particles of", "dp = 0.2, not dp = 0.1"]),
+])
+def test_restart_that_cannot_go_on_leaves_the_run_alone(tmp_path, good_frame, args, fragments):
+    """A restart into the run's own directory with an end time not after the frame's, or with another
+    spacing, is refused before the frames after it are deleted."""
+    run = tmp_path / "run"
+    shutil.copytree(good_frame.parent, run)
+    before = {p.name: p.read_bytes() for p in run.iterdir()}
+    result = mpisph(["elliptical_drop", "--restart", run / good_frame.name, *args, "--out", run, "--quiet"],
+                    timeout=120)
+    assert_clean_error(result, *fragments)
+    assert {p.name: p.read_bytes() for p in run.iterdir()} == before
 
 
 @pytest.mark.ranks
