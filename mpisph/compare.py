@@ -24,7 +24,9 @@ diagnostics:
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
 runs seen along y) and OUT/compare_energy.png the kinetic and total energy against time. A run
 that blows up (status 3) is measured at its last frame; a run that fails otherwise is listed as
-failed.
+failed, with its error line, and compare then exits with status 1 once the others are written. A
+stabiliser named twice, or a ``--colour`` field that a run's frames would not hold, stops compare
+before any run.
 """
 
 import os
@@ -41,6 +43,7 @@ from .io.diagnostics import read_diagnostics
 from .io.frames import list_frames, read_frame
 from .launch import mpirun_mpisph
 from .particles import MOVING
+from .parts import make_parts
 
 USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
          "[--out DIR] [--colour FIELD]")
@@ -81,14 +84,32 @@ def check_stabilisers(case_name, module, stabilisers, overrides):
         raise InputError(f"case {case_name!r} has no stabiliser parameter to compare")
     if not stabilisers:
         raise InputError("--stabiliser names no stabiliser")
+    twice = sorted({name for name in stabilisers if stabilisers.count(name) > 1})
+    if twice:
+        raise InputError(f"--stabiliser names {', '.join(twice)} twice: each run goes to a directory of its name")
     for name in stabilisers:
         resolve_params(module, {**overrides, "stabiliser": name})
 
 
-def check(case_name, stabilisers, overrides):
-    """The case module and one Case of it (for domain and walls), after ``check_stabilisers``."""
+def check_colour(module, stabilisers, overrides, colour):
+    """InputError, before any run, when ``colour`` is neither the speed nor a field that the frames
+    of every run (its stabiliser beside ``overrides``) hold."""
+    if colour == "speed":
+        return
+    for name in stabilisers:
+        values = resolve_params(module, {**overrides, "stabiliser": name})
+        fields = {f.name for f in make_parts(build_case(module, values), values).frame_fields}
+        if colour not in fields:
+            raise InputError(f"--colour {colour}: the frames with {name} have no such field "
+                             f"(they hold speed, {', '.join(sorted(fields))})")
+
+
+def check(case_name, stabilisers, overrides, colour):
+    """The case module and one Case of it (for domain and walls), after ``check_stabilisers`` and
+    ``check_colour``."""
     module = load_case_module(case_name)
     check_stabilisers(case_name, module, stabilisers, overrides)
+    check_colour(module, stabilisers, overrides, colour)
     return module, build_case(module, resolve_params(module, overrides))
 
 
@@ -208,7 +229,8 @@ def pictures(runs, colour, out):
     kinetic.set_ylabel("kinetic energy [J]")
     total.set_xlabel("t [s]")
     total.set_ylabel("E - E_0, kinetic + gravitational + strain [J]")
-    kinetic.legend()
+    if done:
+        kinetic.legend()
     fig.tight_layout()
     fig.savefig(out / "compare_energy.png", facecolor="white")
 
@@ -217,11 +239,14 @@ def main(argv):
     a = parse(argv)
     names = run_names(a.stabiliser)
     overrides = set_overrides(a.overrides)
-    _, case = check(a.case, names, overrides)
+    _, case = check(a.case, names, overrides, a.colour)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute
     case_arg = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
     out = Path(a.out or Path("runs") / f"compare_{Path(a.case).stem}").resolve()
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise InputError(f"cannot write output directory {str(out)!r}: {e.strerror or e}") from None
     runs, rows = {}, {}
     for name in names:
         runs[name] = out / name
@@ -229,7 +254,7 @@ def main(argv):
         has_frames = runs[name].is_dir() and list_frames(os.fspath(runs[name]))
         rows[name] = (status + (f": {why}" if why and status != "done" else ""),
                       measures(runs[name], case) if status != "failed" and has_frames else None)
-        print(f"compare: {a.case} with {name}: {status}", flush=True)
+        print(f"compare: {a.case} with {name}: {status}" + (f": {why}" if status == "failed" else ""), flush=True)
     sets = " ".join(f"--set {k}={v}" for k, v in overrides.items())
     text = [f"# {a.case}: stabilisers side by side", "",
             f"`python -m mpisph compare {a.case} --stabiliser {','.join(names)} {sets} -n {a.ranks}` "
@@ -238,4 +263,7 @@ def main(argv):
     pictures(runs, a.colour, out)
     (out / "compare.md").write_text("\n".join(text))
     print(f"compare: wrote {out / 'compare.md'}", flush=True)
-    return 0
+    failed = [name for name in names if rows[name][0].startswith("failed")]
+    if failed:
+        print(f"compare: {', '.join(failed)} failed (compare.md and the lines above say why)", flush=True)
+    return 1 if failed else 0

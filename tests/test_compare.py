@@ -96,11 +96,31 @@ def test_paths_are_read_from_where_compare_is_started(tmp_path):
     (["cohesive_failure_2d", "--stabiliser", "none,xsph"], "parameter stabiliser must be one of"),
     (["cohesive_failure_2d", "--stabiliser", "none", "--set", "stabiliser=tvf"], "chosen by --stabiliser"),
     (["cohesive_failure_2d"], "--stabiliser"),
+    (["cohesive_failure_2d", "--stabiliser", "utvf,none,utvf"], "names utvf twice"),
+    (["cohesive_failure_2d", "--stabiliser", "none,utvf", "--colour", "bogus"],
+     "--colour bogus: the frames with none have no such field (they hold speed, "),
 ])
 def test_what_cannot_be_compared_is_one_line(tmp_path, args, message):
     r = compare(*args, "--out", tmp_path)
     assert r.returncode == 2
     assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+def test_an_output_path_that_is_a_file_is_one_line(tmp_path):
+    (tmp_path / "a_file").write_text("not a directory")
+    r = compare("cohesive_failure_2d", "--stabiliser", "none", "--out", tmp_path / "a_file")
+    assert r.returncode == 2
+    assert "cannot write output directory" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+@pytest.mark.ranks
+def test_a_run_that_fails_makes_compare_fail_after_the_table(tmp_path):
+    """Three ranks on a domain of two slabs: each run stops with its one-line error, which compare
+    prints and puts in its table, and compare exits 1."""
+    r = compare("elliptical_drop", "--stabiliser", "none,utvf", "--set", "dp=1.0", "--out", tmp_path, "-n", "3")
+    assert r.returncode == 1, r.stderr
+    assert r.stdout.count("only 2 slabs") == 2 and "none, utvf failed" in r.stdout
+    assert [row.split(" | ")[1] for row in table_rows(tmp_path / "compare.md")][0].startswith("failed: ")
 
 
 @pytest.mark.ranks
