@@ -40,6 +40,9 @@ def _parser():
 
 
 def _overrides(args):
+    for option, value in (("--out", args.out), ("--restart", args.restart)):
+        if value == "":
+            raise InputError(f"{option} needs a path, not an empty one")
     out = parse_sets(args.overrides)
     if args.t_end is not None:
         out["t_end"] = repr(args.t_end)

@@ -356,16 +356,25 @@ def case_names():
 def load_case_module(name):
     """Import ``cases/NAME.py`` (or a case file given by its path).
 
-    Unknown names raise InputError with a suggestion.
+    Unknown names, a case file that is missing, is not Python or has no PARAMS and setup raise
+    InputError (an error raised by the file's own code keeps its traceback).
     """
     path = Path(name) if name.endswith(".py") else CASES_DIR / f"{name}.py"
     if not path.is_file():
+        if name.endswith(".py"):
+            raise InputError(f"no case file {name!r}")
         close = difflib.get_close_matches(name, case_names(), n=1)
         hint = f"; did you mean {close[0]!r}?" if close else "; see 'python -m mpisph list'"
         raise InputError(f"unknown case {name!r}{hint}")
     spec = importlib.util.spec_from_file_location(f"mpisph_case_{path.stem}", path)
     module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    try:
+        spec.loader.exec_module(module)
+    except SyntaxError as e:
+        raise InputError(f"case file {name}, line {e.lineno}: {e.msg}") from None
+    missing = [attr for attr in ("PARAMS", "setup") if not hasattr(module, attr)]
+    if missing:
+        raise InputError(f"case file {name} defines no {' and no '.join(missing)} (cases/*.py show the form)")
     return module
 
 

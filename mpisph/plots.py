@@ -96,8 +96,12 @@ def deposit_png(out_dir, png_path=None):
     y (x horizontal, z vertical).
     """
     out_dir = os.fspath(out_dir)
+    if os.path.isfile(out_dir):
+        raise InputError(f"{out_dir} is a file: plot takes the directory of a run")
     if not os.path.isdir(out_dir):
         raise InputError(f"{out_dir}: no such directory")
+    if png_path is not None and not os.fspath(png_path).lower().endswith(".png"):
+        raise InputError(f"{png_path}: plot writes a PNG, its name ends in .png")
     frames = list_frames(out_dir)
     if not frames:
         raise InputError(f"no complete frames (frame_*.hdf) in {out_dir}")

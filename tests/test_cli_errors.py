@@ -81,6 +81,30 @@ def test_body_outside_domain(tmp_path):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.parametrize("text, fragment", [
+    ("PARAMS = {\n", "line 1: '{' was never closed"),
+    ("def setup(p):\n    return None\n", "defines no PARAMS (cases/*.py show the form)"),
+    ("PARAMS = {}\n", "defines no setup"),
+])
+def test_a_case_file_that_is_not_a_case(tmp_path, text, fragment):
+    case = tmp_path / "my_case.py"
+    case.write_text(text)
+    result = mpisph([case, "--quiet", "--out", tmp_path / "o"], timeout=120)
+    assert_clean_error(result, f"case file {case}", fragment)
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (["NOWHERE/my_case.py"], "no case file "),
+    (["elliptical_drop", "--out", ""], "--out needs a path, not an empty one"),
+    (["elliptical_drop", "--restart", ""], "--restart needs a path, not an empty one"),
+])
+def test_empty_or_missing_paths(tmp_path, args, fragment):
+    args = [a.replace("NOWHERE", str(tmp_path / "nowhere")) for a in args]
+    result = mpisph([*args, "--quiet"], timeout=120)
+    assert_clean_error(result, fragment)
+
+
 @pytest.mark.ranks
 def test_more_ranks_than_slabs(existing_output):
     out, marker = existing_output

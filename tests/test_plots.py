@@ -86,6 +86,10 @@ def test_no_frames(tmp_path):
     assert "\n" not in str(err.value)
     with pytest.raises(InputError, match="no such directory"):
         deposit_png(tmp_path / "missing")
+    with pytest.raises(InputError, match="frame_00000.hdf.part is a file: plot takes the directory of a run"):
+        deposit_png(tmp_path / "frame_00000.hdf.part")
+    with pytest.raises(InputError, match="plot writes a PNG, its name ends in .png"):
+        deposit_png(tmp_path, tmp_path / "deposit.txt")
 
 
 def test_cli_plot(tmp_path):
