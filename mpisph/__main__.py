@@ -191,13 +191,13 @@ def run(args, comm):
     if args.restart:
         frame = read_rows(args.restart, 0, 0)  # the frame's attributes, no particle
         written = frame["params"]
-        if written.get("case") != args.case:
+        if cases.case_key(str(written.get("case"))) != cases.case_key(args.case):
             raise InputError(f"{args.restart} was written by case {written.get('case')!r}, not {args.case!r}")
         values = cases.resolve_params(module, overrides, base=written)
         _check_restart(args.restart, frame["t"], written, values)
     else:
         values = cases.resolve_params(module, overrides)
-    values["case"] = args.case
+    values["case"] = cases.case_key(args.case)
     case = cases.build_case(module, values)
     parts = make_parts(case, values)
     case.validate(parts.kernel.support)
@@ -237,7 +237,7 @@ def run(args, comm):
     progress.finish(sim, time.perf_counter() - wall0, step0, ended="stopped" if stopped else "done")
     if stopped and comm.rank == 0:
         print(f"mpisph: {stopped}; frame {stopped.frame} written; continue with: mpirun -n {comm.size} python -m "
-              f"mpisph {args.case} --restart {stopped.frame} --out {out_dir}", flush=True)
+              f"mpisph {values['case']} --restart {stopped.frame} --out {out_dir}", flush=True)
 
 
 def main(argv=None, comm=None):

@@ -378,6 +378,15 @@ def load_case_module(name):
     return module
 
 
+def case_key(name):
+    """How a frame names its case (parameter ``case``): a file of cases/ by its name, however given,
+    another case file by its absolute path, so that a restart from any directory finds it."""
+    if not name.endswith(".py"):
+        return name
+    path = Path(name).resolve()
+    return path.stem if path.parent == CASES_DIR.resolve() else str(path)
+
+
 def all_params(module):
     """Case parameters followed by the run parameters the case does not set itself."""
     params = dict(module.PARAMS)

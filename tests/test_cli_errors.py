@@ -8,6 +8,9 @@ import pytest
 
 from mpirun import mpisph, stderr_lines
 
+from mpisph.io.frames import read_frame
+from mpisph.launch import ROOT
+
 TINY = ["--set", "dp=0.2", "--t-end", "0.0004", "--output-interval", "0.0002", "--quiet"]
 
 
@@ -252,3 +255,21 @@ def test_two_particles_at_the_same_place_stop_the_run_with_one_line(tmp_path):
     line = result.stderr.strip().splitlines()[-1]
     for words in ("blow-up at step 0", "two particles at the same place", "particles 0 and", "last frame written"):
         assert words in line, line
+
+
+def test_a_run_started_by_its_file_restarts_by_its_name(tmp_path):
+    """The frame names a case of cases/ by its name however the run named it (case.case_key), so
+    `cases/elliptical_drop.py` (from the repository root) restarts as `elliptical_drop`; a case file
+    elsewhere is named by its absolute path."""
+    out = tmp_path / "by_path"
+    first = mpisph(["cases/elliptical_drop.py", *TINY, "--out", out], timeout=300)
+    assert first.returncode == 0, first.stderr
+    again = mpisph(["elliptical_drop", "--restart", out / "frame_00001.hdf", "--t-end", "0.0006",
+                    "--out", tmp_path / "again", "--quiet"], timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert read_frame(out / "frame_00001.hdf")["params"]["case"] == "elliptical_drop"
+    mine = tmp_path / "my_drop.py"
+    shutil.copy(ROOT / "cases" / "elliptical_drop.py", mine)
+    own = mpisph([mine, *TINY, "--out", tmp_path / "own"], timeout=300)
+    assert own.returncode == 0, own.stderr
+    assert read_frame(tmp_path / "own" / "frame_00001.hdf")["params"]["case"] == str(mine)
