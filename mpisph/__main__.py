@@ -1,4 +1,4 @@
-"""Command line: python -m mpisph CASE [options] | list | info CASE | report FRAME... | plot OUT_DIR [PNG]
+"""Command line: python -m mpisph CASE [options] | list | info CASE [--set ...] | report FRAME... | plot OUT_DIR [PNG]
 | compare CASE --stabiliser A,B,... (compare.py)
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
@@ -19,7 +19,7 @@ from .errors import BlowUp, InputError, Stopped
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
          "       python -m mpisph list\n"
-         "       python -m mpisph info CASE\n"
+         "       python -m mpisph info CASE [--set NAME=VALUE ...]\n"
          "       python -m mpisph report FRAME [FRAME ...]\n"
          "       python -m mpisph plot OUT_DIR [PNG]\n"
          "       python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
@@ -59,17 +59,17 @@ def cmd_list():
         print(f"{name:<{width}}  {describe(load_case_module(name))}")
 
 
-def cmd_info(name):
+def cmd_info(name, overrides):
     """The case's description, parts, parameters (default, unit, meaning) and the arrays its frames
-    hold (with the default parameters)."""
+    hold with its default parameters but ``overrides`` ({name: text} of --set)."""
     import numpy as np
 
     from .case import all_params, build_case, describe, load_case_module, resolve_params
     from .parts import make_parts
     module = load_case_module(name)
-    print(f"{name}: {describe(module)}")
-    values = resolve_params(module, {})
+    values = resolve_params(module, overrides)
     case = build_case(module, values)
+    print(f"{name}: {describe(module)}")
     forces = ", ".join(type(f).__name__ for f in case.forces)
     print(f"scheme {case.scheme}, integrator {case.integrator}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
@@ -253,10 +253,12 @@ def main(argv=None, comm=None):
                 cmd_list()
             return 0
         if argv[:1] == ["info"]:
-            if len(argv) != 2:
-                raise InputError("usage: python -m mpisph info CASE")
+            info = Parser(prog="mpisph info", usage="python -m mpisph info CASE [--set NAME=VALUE ...]")
+            info.add_argument("case")
+            add_set(info)
+            args = info.parse_args(argv[1:])
             if comm.rank == 0:
-                cmd_info(argv[1])
+                cmd_info(args.case, parse_sets(args.overrides))
             return 0
         if argv[:1] == ["report"]:
             if len(argv) < 2:

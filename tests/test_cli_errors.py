@@ -273,3 +273,17 @@ def test_a_run_started_by_its_file_restarts_by_its_name(tmp_path):
     own = mpisph([mine, *TINY, "--out", tmp_path / "own"], timeout=300)
     assert own.returncode == 0, own.stderr
     assert read_frame(tmp_path / "own" / "frame_00001.hdf")["params"]["case"] == str(mine)
+
+
+def test_info_lists_the_arrays_an_option_adds_and_refuses_a_bad_one():
+    """`info CASE --set ...`: the adaptive kernel's frames hold its knots, the default's do not; a bad
+    value is one line before the description."""
+    def arrays(*sets):
+        r = mpisph(["info", "vertical_cut", *sets], timeout=120)
+        assert r.returncode == 0, r.stderr
+        return {line.split()[0] for line in r.stdout.split("frames hold for each particle", 1)[1].splitlines()[1:]
+                if line.strip()}
+    assert {"knot", "displacement_gradient"} <= arrays("--set", "stabiliser=adaptive_kernel") - arrays()
+    bad = mpisph(["info", "vertical_cut", "--set", "stabiliser=bogus"], timeout=120)
+    assert_clean_error(bad, "parameter stabiliser must be one of")
+    assert bad.stdout == ""

@@ -262,7 +262,7 @@ def test_info_lists_the_arrays_of_a_frame(runs, case, capsys):
     """`python -m mpisph info CASE` lists every array of a frame of the case (these runs set only
     sizes and times), each with its type, its shape per particle and a meaning that ends in a unit or
     says what its codes are."""
-    cmd_info(case)
+    cmd_info(case, {})
     out = capsys.readouterr().out
     listed = out.split("frames hold for each particle", 1)[1].splitlines()[1:]
     rows = {line.split()[0]: line.split()[1:] for line in listed if line.strip()}
