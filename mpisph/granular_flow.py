@@ -90,11 +90,13 @@ def side_walls(p, height):
     """The case's force terms of the side walls of ``p`` (side_wall_params) on grains of a layer or
     column ``height`` high: none for channel_width = 0, else their friction, regularised below
     WALL_CREEP sqrt(g height)."""
+    if p.channel_width == 0 and p.wall_friction_deg != 0:
+        raise InputError(f"wall_friction_deg = {p.wall_friction_deg:g} is the friction of side walls, which "
+                         "channel_width = 0 leaves out: give channel_width too")
     if p.channel_width == 0:
         return []
-    if p.channel_width < 0 or not 0 <= p.wall_friction_deg < 90:
-        raise InputError(f"side walls need channel_width > 0 and wall_friction_deg in [0, 90), not "
-                         f"{p.channel_width} m and {p.wall_friction_deg} deg")
+    if p.channel_width < 0:
+        raise InputError(f"side walls need channel_width > 0, not {p.channel_width} m")
     if p.law_pressure == "carried":
         raise InputError("side walls take the law's pressure, which law_pressure=carried does not keep: use "
                          "carried_mean or state")

@@ -100,11 +100,12 @@ def test_the_walls_take_the_momentum_of_their_friction(sheets, law, pressure):
     assert impulse < -0.07 * momentum[0]  # the friction is not negligible: 7 % of the momentum in 0.02 s
 
 
-@pytest.mark.parametrize("setting, words", [("channel_width=-0.1", "side walls need"),
-                                            ("wall_friction_deg=90", "side walls need"),
-                                            ("law_pressure=carried", "does not keep")])
+@pytest.mark.parametrize("setting, words", [("channel_width=-0.1", "side walls need channel_width > 0"),
+                                            ("wall_friction_deg=90", "wall_friction_deg must lie in [0, 90)"),
+                                            ("law_pressure=carried", "does not keep"),
+                                            ("channel_width=0 wall_friction_deg=20", "give channel_width too")])
 def test_bad_side_walls_are_one_line_errors(tmp_path, setting, words):
-    r = mpisph([*SHEET, "channel_width=0.1", setting, "--out", tmp_path, "--quiet"], ranks=1)
+    r = mpisph([*SHEET, "channel_width=0.1", *setting.split(), "--out", tmp_path, "--quiet"], ranks=1)
     assert r.returncode == 2
     lines = stderr_lines(r.stderr)
     assert len(lines) == 1 and words in lines[0]
