@@ -249,6 +249,8 @@ def main(argv=None, comm=None):
         comm = MPI.COMM_WORLD
     try:
         if argv[:1] == ["list"]:
+            if len(argv) != 1:
+                raise InputError("usage: python -m mpisph list")
             if comm.rank == 0:
                 cmd_list()
             return 0

@@ -396,7 +396,8 @@ def all_params(module):
 
 
 def describe(module):
-    return (module.__doc__ or "").strip().splitlines()[0] if module.__doc__ else ""
+    """The first paragraph of the case's docstring, on one line."""
+    return " ".join((module.__doc__ or "").strip().split("\n\n")[0].split())
 
 
 def resolve_params(module, overrides, base=None):

@@ -287,3 +287,11 @@ def test_info_lists_the_arrays_an_option_adds_and_refuses_a_bad_one():
     bad = mpisph(["info", "vertical_cut", "--set", "stabiliser=bogus"], timeout=120)
     assert_clean_error(bad, "parameter stabiliser must be one of")
     assert bad.stdout == ""
+
+
+def test_list_takes_no_argument_and_describes_each_case_by_its_first_paragraph():
+    r = mpisph(["list"], timeout=120)
+    assert r.returncode == 0, r.stderr
+    cavity = next(line for line in r.stdout.splitlines() if line.startswith("lid_driven_cavity "))
+    assert cavity.endswith("(`--set Re=1000 nx=100`).")  # its docstring's first line ends mid-sentence
+    assert_clean_error(mpisph(["list", "extra"], timeout=120), "usage: python -m mpisph list")
