@@ -30,9 +30,13 @@ class Progress:
                   f"frames in {sim.out_dir}")
         for line in sim.parts.scheme.report():
             self._say(line)
+        for line in sim.case.warnings:
+            self.warn(line)
+
+    def warn(self, line):
+        """``line`` as a warning on rank 0's standard error, quiet or not."""
         if self.comm.rank == 0:
-            for line in sim.case.warnings:
-                print(f"mpisph: warning: {line}", file=sys.stderr, flush=True)
+            print(f"mpisph: warning: {line}", file=sys.stderr, flush=True)
 
     def __call__(self, sim, wall, t0, step0, at_frame):
         now = wallclock.perf_counter()

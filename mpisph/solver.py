@@ -186,8 +186,13 @@ class Simulation:
                 self.parts.scheme.start(self.ctx)
             self.write_frame()
             self._record()
+        first = True
         while self.t < t_end:
             dt, dt_advection = self._configure()
+            if first and interval < dt:
+                self.progress.warn(f"output_interval = {interval:g} s is shorter than the time step, {dt:.3g} s: "
+                                   "each step ends at a frame and is cut to the interval")
+            first = False
             t_next_frame = min((self.frame_index + 1) * interval, t_end)
             t_stop = min(self.t + dt_advection, t_next_frame)
             while True:

@@ -295,3 +295,13 @@ def test_list_takes_no_argument_and_describes_each_case_by_its_first_paragraph()
     cavity = next(line for line in r.stdout.splitlines() if line.startswith("lid_driven_cavity "))
     assert cavity.endswith("(`--set Re=1000 nx=100`).")  # its docstring's first line ends mid-sentence
     assert_clean_error(mpisph(["list", "extra"], timeout=120), "usage: python -m mpisph list")
+
+
+def test_an_output_interval_below_the_time_step_is_warned_of(tmp_path):
+    """The drop at dp = 0.2 steps by about 1e-4 s: a 1e-7 s interval cuts every step to it, and says so."""
+    r = mpisph(["elliptical_drop", "--set", "dp=0.2", "--t-end", "3e-7", "--output-interval", "1e-7", "--quiet",
+                "--out", tmp_path], timeout=120)
+    assert r.returncode == 0, r.stderr
+    (line,) = stderr_lines(r.stderr)
+    assert line.startswith("mpisph: warning: output_interval = 1e-07 s is shorter than the time step, "), line
+    assert "each step ends at a frame and is cut to the interval" in line
