@@ -367,3 +367,21 @@ def vertical_cut_critical_height(cohesion, phi_deg, gamma, psi_deg=None):
         eta = np.cos(psi) * np.cos(phi) / (1.0 - np.sin(psi) * np.sin(phi))
     phi_star = np.arctan(eta * np.tan(phi))
     return VERTICAL_CUT_LOG_SPIRAL * eta * cohesion / gamma * np.tan(np.pi / 4 + phi_star / 2)
+
+
+def vertical_cut_safety_factor(cohesion, phi_deg, gamma, height, psi_deg=0.0):
+    """(associated, Drescher & Detournay for ``psi_deg``): the factors F of strength reduction (c / F,
+    tan phi / F, tan psi / F) at which ``vertical_cut_critical_height`` falls to ``height``, found by
+    bisection (the height falls as F grows)."""
+    def reduced_height(factor, dilatant):
+        phi = np.degrees(np.arctan(np.tan(np.radians(phi_deg)) / factor))
+        psi = np.degrees(np.arctan(np.tan(np.radians(psi_deg)) / factor)) if dilatant else None
+        return vertical_cut_critical_height(cohesion / factor, phi, gamma, psi)
+
+    def factor(dilatant):
+        low, high = 1e-3, 1e3
+        for _ in range(200):
+            middle = np.sqrt(low * high)
+            low, high = (middle, high) if reduced_height(middle, dilatant) > height else (low, middle)
+        return float(np.sqrt(low * high))
+    return factor(False), factor(True)

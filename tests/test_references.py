@@ -202,3 +202,15 @@ def test_the_vertical_cut_critical_height_and_its_non_associated_reduction():
     assert references.vertical_cut_critical_height(c, 20.0, gamma, psi_deg=0.0) == pytest.approx(
         3.83 * eta * c / gamma * math.tan(math.radians(45.0 + phi_star / 2)), rel=1e-12)
     assert references.vertical_cut_critical_height(c, 20.0, gamma, psi_deg=0.0) == pytest.approx(1.388, abs=5e-4)
+
+
+def test_the_safety_factor_of_a_vertical_cut_is_one_at_its_critical_height():
+    """Strength reduction's F: 1 at each critical height; for phi = 0 the height is proportional to c,
+    so F is H_c / H."""
+    gamma = 1850 * 9.8
+    h_c = references.vertical_cut_critical_height(5e3, 20.0, gamma)
+    h_c_psi = references.vertical_cut_critical_height(5e3, 20.0, gamma, 0.0)
+    assert references.vertical_cut_safety_factor(5e3, 20.0, gamma, h_c)[0] == pytest.approx(1.0, rel=1e-9)
+    assert references.vertical_cut_safety_factor(5e3, 20.0, gamma, h_c_psi)[1] == pytest.approx(1.0, rel=1e-9)
+    clay = references.vertical_cut_critical_height(5e3, 0.0, gamma)
+    assert references.vertical_cut_safety_factor(5e3, 0.0, gamma, 2.0) == pytest.approx((clay / 2.0,) * 2, rel=1e-9)
