@@ -12,14 +12,15 @@ the particles' displacements over the stage and since the start over the body's 
 (measure.cut_height). The first stage, the case's release, settles; a later stage whose displacement
 passes SLIDE H slid (a cut at rest creeps by a few thousandths of H a second, docs/CUTS.md), and the
 first F that slid brackets the factor of safety with the one before (a slide changes the body's shape,
-so the stages after it no longer test the same body). For a
-vertical cut the first line also gives the factors at which limit analysis puts the cut's height
-critical (references.vertical_cut_safety_factor). ``--report`` reads the stages already in DIR.
+so the stages after it no longer test the same body). For a vertical cut the first line also gives
+the factors at which limit analysis puts the cut's height critical
+(references.vertical_cut_safety_factor). ``--report`` reads the stages already in DIR.
 """
 
 import argparse
 import math
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -41,20 +42,23 @@ def reduced(params, factor):
     return float(params["cohesion"]) / factor, angle("phi"), angle("psi")
 
 
-def run_stages(case, sets, soil, factors, settle, stage, ranks, out):
-    """Run the stages (see the module's docstring) into ``out``: ``sets`` are the --set items and
-    ``soil`` the case's parameters; returns the stages' (factor, start, end) times."""
-    stages, t = [], 0.0
-    for k, factor in enumerate(factors):
+def stage_times(factors, settle, stage):
+    """(factor, start, end) of each stage: the first ``settle`` long, the others ``stage``."""
+    ends = np.cumsum([settle] + [stage] * (len(factors) - 1))
+    return [(f, float(t0), float(t1)) for f, t0, t1 in zip(factors, np.concatenate([[0.0], ends[:-1]]), ends)]
+
+
+def run_stages(case, sets, soil, stages, stage, ranks, out):
+    """Run ``stages`` (``stage_times``; see the module's docstring) into ``out``: ``sets`` are the
+    --set items, ``soil`` the case's parameters and ``stage`` the frames' spacing in time, a quarter
+    of it."""
+    case = str(Path(case).resolve()) if case.endswith(".py") else case  # the runs start in the repository's root
+    for k, (factor, t0, t1) in enumerate(stages):
         c, phi, psi = reduced(soil, factor)
         strength = [f"cohesion={c!r}", f"phi={phi!r}", f"psi={psi!r}"]
-        length = settle if k == 0 else stage
         start = ["--set", *sets, *strength] if k == 0 else ["--restart", list_frames(out)[-1], "--set", *strength]
-        mpirun_mpisph([case, *start, "--t-end", repr(t + length), "--output-interval", repr(stage / 4),
-                       "--out", out, "--quiet"], ranks=ranks, accept=(0,))
-        stages.append((factor, t, t + length))
-        t += length
-    return stages
+        mpirun_mpisph([case, *start, "--t-end", repr(t1), "--output-interval", repr(stage / 4), "--out", out,
+                       "--quiet"], ranks=ranks, accept=(0,))
 
 
 def stage_rows(out, params, stages):
@@ -90,11 +94,9 @@ def main():
     a = ap.parse_args()
     a.out = os.path.abspath(a.out)  # the runs start in the repository's root (launch.mpirun_mpisph)
     soil = resolve_params(load_case_module(a.case), parse_sets(a.sets))
-    if a.report:
-        ends = np.cumsum([a.settle] + [a.stage] * (len(a.factors) - 1))
-        stages = list(zip(a.factors, np.concatenate([[0.0], ends[:-1]]), ends))
-    else:
-        stages = run_stages(a.case, a.sets, soil, a.factors, a.settle, a.stage, a.ranks, a.out)
+    stages = stage_times(a.factors, a.settle, a.stage)
+    if not a.report:
+        run_stages(a.case, a.sets, soil, stages, a.stage, a.ranks, a.out)
     height, rows = stage_rows(a.out, soil, stages)
     gamma = soil["rho0"] * soil["g"]
     limit = vertical_cut_safety_factor(soil["cohesion"], soil["phi"], gamma, height, soil["psi"])

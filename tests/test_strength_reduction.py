@@ -46,3 +46,26 @@ def test_after_the_first_stage_settles_a_stage_that_moves_the_body_beyond_the_sl
     assert stood[0] == "1" and stood[3] == "5 at +0.25" and float(stood[5]) == 0.0 and stood[7] == "stood"
     assert slid[1] == f"{5 / 1.1:.3f}" and float(slid[5]) == pytest.approx(0.03, abs=1e-4)
     assert float(slid[6]) == pytest.approx(0.04, abs=1e-4) and slid[7] == "slid"
+
+
+def test_the_stages_follow_each_other_the_first_settle_seconds_long():
+    assert strength_reduction.stage_times([0.6, 0.7, 0.8], 2.0, 1.0) == [(0.6, 0.0, 2.0), (0.7, 2.0, 3.0),
+                                                                         (0.8, 3.0, 4.0)]
+
+
+def test_each_stage_restarts_the_last_frame_with_its_reduced_strength(tmp_path):
+    """A coarse cut in two short stages: the second stage's frames carry c / F and atan(tan phi / F)
+    of the case's own strength, and the table has a row per stage."""
+    from mpisph.io.frames import list_frames, read_frame
+
+    sets = ["dp=0.2", "kernel=wendland_c2", "h_factor=1.3"]
+    soil = {"cohesion": 5e3, "phi": 20.0, "psi": 0.0}
+    stages = strength_reduction.stage_times([1.0, 1.25], 0.02, 0.02)
+    strength_reduction.run_stages("vertical_cut", sets, soil, stages, 0.02, 1, str(tmp_path))
+    last = read_frame(list_frames(str(tmp_path))[-1])
+    assert last["t"] == pytest.approx(0.04, rel=1e-9)
+    c, phi, psi = strength_reduction.reduced(soil, 1.25)
+    assert (last["params"]["cohesion"], last["params"]["phi"], last["params"]["psi"]) == (c, phi, psi)
+    assert float(last["params"]["dp"]) == 0.2
+    _, rows = strength_reduction.stage_rows(str(tmp_path), soil, stages)
+    assert len(rows) == 2 and rows[0].endswith("| settling |")
