@@ -154,20 +154,33 @@ def _prepare_out_dir(comm, path, start, keep_later=False):
         raise InputError(problem)
 
 
-SPACINGS = ("dp", "nx", "H_over_dp")  # the parameters by which the cases set their particle spacing
-
-
-def _check_restart(frame, t, written, values):
-    """Refuse a restart from ``frame`` (written at time ``t`` with the parameters ``written``) that
-    could not go on with the parameters ``values``: an end time not after ``t``, or another spacing
-    than the one its particles were placed at (the smoothing length and the wall layers follow it)."""
+def _check_restart(frame, t, values):
+    """Refuse a restart from ``frame``, written at time ``t``, to an end time (in ``values``) not after it."""
     if not values["t_end"] > t:
         raise InputError(f"t_end = {values['t_end']:g} s is not after the time of {frame}, {t:g} s: "
                          "give a later --t-end")
-    for name in SPACINGS:
-        if name in values and values[name] != written[name]:
-            raise InputError(f"a restart keeps the spacing of the particles of {frame}, {name} = {written[name]:g}, "
-                             f"not {name} = {values[name]:g}: start a new run to change it")
+
+
+def _layout(case):
+    """What a case's particles are placed by: the domain, and each source's size with its first and
+    last positions (sources.py)."""
+    import numpy as np
+
+    ends = [(s.size, *(np.asarray(s.position(i)).tolist() for i in (0, s.size - 1))) if s.size else (0,)
+            for s in case.sources]
+    return np.asarray(case.domain).tolist(), ends
+
+
+def _check_layout(frame, module, written, overrides, case):
+    """Refuse a restart from ``frame`` (written with the parameters ``written``) whose ``overrides``
+    build ``case`` with particles or a domain other than the frame's: a restart moves on the frame's
+    particles, so the spacing or the shape of a body cannot change there."""
+    from .case import build_case, resolve_params
+
+    if _layout(case) != _layout(build_case(module, resolve_params(module, {}, base=written))):
+        changed = " ".join(f"{k}={v}" for k, v in overrides.items() if k not in ("t_end", "output_interval"))
+        raise InputError(f"a restart goes on with the particles of {frame}, which --set {changed} would place "
+                         "otherwise: start a new run to change them")
 
 
 def run(args, comm):
@@ -194,11 +207,13 @@ def run(args, comm):
         if cases.case_key(str(written.get("case"))) != cases.case_key(args.case):
             raise InputError(f"{args.restart} was written by case {written.get('case')!r}, not {args.case!r}")
         values = cases.resolve_params(module, overrides, base=written)
-        _check_restart(args.restart, frame["t"], written, values)
+        _check_restart(args.restart, frame["t"], values)
     else:
         values = cases.resolve_params(module, overrides)
     values["case"] = cases.case_key(args.case)
     case = cases.build_case(module, values)
+    if args.restart:
+        _check_layout(args.restart, module, written, overrides, case)
     parts = make_parts(case, values)
     case.validate(parts.kernel.support)
     if args.restart:

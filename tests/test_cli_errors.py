@@ -171,11 +171,13 @@ def test_restart_frame_of_another_case(good_frame, existing_output):
 @pytest.mark.parametrize("args, fragments", [
     (["--t-end", "0.0002"], ["t_end = 0.0002 s is not after the time of", "0.0002 s: give a later --t-end"]),
     (["--t-end", "0.0001"], ["t_end = 0.0001 s is not after"]),
-    (["--set", "dp=0.1"], ["a restart keeps the spacing of the particles of", "dp = 0.2, not dp = 0.1"]),
+    (["--set", "dp=0.1"], ["a restart goes on with the particles of", "which --set dp=0.1 would place otherwise"]),
+    (["--set", "A0=200", "radius=0.8"], ["which --set A0=200 radius=0.8 would place otherwise"]),
 ])
 def test_restart_that_cannot_go_on_leaves_the_run_alone(tmp_path, good_frame, args, fragments):
-    """A restart into the run's own directory with an end time not after the frame's, or with another
-    spacing, is refused before the frames after it are deleted."""
+    """A restart into the run's own directory with an end time not after the frame's, or with a
+    spacing or a body's size that would place other particles, is refused before the frames after it
+    are deleted; a parameter that leaves them in place (A0, the drop's initial stretch) is taken."""
     run = tmp_path / "run"
     shutil.copytree(good_frame.parent, run)
     before = {p.name: p.read_bytes() for p in run.iterdir()}
