@@ -3,11 +3,13 @@ and leaves existing output alone."""
 
 import os
 import shutil
+from types import SimpleNamespace
 
 import pytest
 
 from mpirun import mpisph, stderr_lines
 
+from mpisph.__main__ import main as mpisph_main
 from mpisph.io.frames import read_frame
 from mpisph.launch import ROOT
 
@@ -54,6 +56,24 @@ def existing_output(tmp_path):
                                                  "GB available"]),
     (["vertical_cut", "--set", "stabiliser=adaptive_kernel", "density_reinit=inner"],
      ["adaptive_kernel needs density_reinit=none, not 'inner'", "4.3 % above rho0 in 2D"]),
+])
+def test_bad_parameters(args, fragments, existing_output):
+    out, marker = existing_output
+    result = mpisph(args + ["--out", out, "--quiet"], timeout=120)
+    assert_clean_error(result, *fragments)
+    assert marker.read_bytes() == b"earlier result"
+    assert sorted(os.listdir(out)) == [marker.name]
+
+
+def in_process(argv, capsys):
+    """``python -m mpisph argv`` run in this process (mpisph.__main__.main): its status and
+    (stdout, stderr). For input refused before any rank works, where mpirun would add only its start."""
+    status = mpisph_main([str(a) for a in argv])
+    out = capsys.readouterr()
+    return SimpleNamespace(returncode=status, stdout=out.out, stderr=out.err)
+
+
+@pytest.mark.parametrize("args, fragments", [
     (["vertical_cut", "--set", "nu=0.5"], ["nu must lie in [0, 0.5), not 0.5"]),
     (["oscillating_beam", "--set", "nu=0.7"], ["nu must lie in [0, 0.5), not 0.7"]),
     (["vertical_cut", "--set", "phi=95"], ["phi must lie in [0, 90), not 95.0"]),
@@ -65,12 +85,10 @@ def existing_output(tmp_path):
     (["elliptical_drop", "--set", "max_time_step=-1"], ["max_time_step must lie in [0, inf), not -1.0"]),
     (["lube_collapse_2d", "--set", "mu_s_deg=95"], ["mu_s_deg must lie in [0, 90), not 95.0"]),
 ])
-def test_bad_parameters(args, fragments, existing_output):
+def test_parameters_out_of_their_bounds(args, fragments, existing_output, capsys):
     out, marker = existing_output
-    result = mpisph(args + ["--out", out, "--quiet"], timeout=120)
-    assert_clean_error(result, *fragments)
-    assert marker.read_bytes() == b"earlier result"
-    assert sorted(os.listdir(out)) == [marker.name]
+    assert_clean_error(in_process(args + ["--out", out, "--quiet"], capsys), *fragments)
+    assert sorted(os.listdir(out)) == [marker.name] and marker.read_bytes() == b"earlier result"
 
 
 def test_body_outside_domain(tmp_path):
@@ -89,10 +107,10 @@ def test_body_outside_domain(tmp_path):
     ("def setup(p):\n    return None\n", "defines no PARAMS (cases/*.py show the form)"),
     ("PARAMS = {}\n", "defines no setup"),
 ])
-def test_a_case_file_that_is_not_a_case(tmp_path, text, fragment):
+def test_a_case_file_that_is_not_a_case(tmp_path, text, fragment, capsys):
     case = tmp_path / "my_case.py"
     case.write_text(text)
-    result = mpisph([case, "--quiet", "--out", tmp_path / "o"], timeout=120)
+    result = in_process([case, "--quiet", "--out", tmp_path / "o"], capsys)
     assert_clean_error(result, f"case file {case}", fragment)
     assert not (tmp_path / "o").exists()
 
@@ -102,9 +120,9 @@ def test_a_case_file_that_is_not_a_case(tmp_path, text, fragment):
     (["elliptical_drop", "--out", ""], "--out needs a path, not an empty one"),
     (["elliptical_drop", "--restart", ""], "--restart needs a path, not an empty one"),
 ])
-def test_empty_or_missing_paths(tmp_path, args, fragment):
+def test_empty_or_missing_paths(tmp_path, args, fragment, capsys):
     args = [a.replace("NOWHERE", str(tmp_path / "nowhere")) for a in args]
-    result = mpisph([*args, "--quiet"], timeout=120)
+    result = in_process([*args, "--quiet"], capsys)
     assert_clean_error(result, fragment)
 
 
@@ -277,26 +295,26 @@ def test_a_run_started_by_its_file_restarts_by_its_name(tmp_path):
     assert read_frame(tmp_path / "own" / "frame_00001.hdf")["params"]["case"] == str(mine)
 
 
-def test_info_lists_the_arrays_an_option_adds_and_refuses_a_bad_one():
+def test_info_lists_the_arrays_an_option_adds_and_refuses_a_bad_one(capsys):
     """`info CASE --set ...`: the adaptive kernel's frames hold its knots, the default's do not; a bad
     value is one line before the description."""
     def arrays(*sets):
-        r = mpisph(["info", "vertical_cut", *sets], timeout=120)
+        r = in_process(["info", "vertical_cut", *sets], capsys)
         assert r.returncode == 0, r.stderr
         return {line.split()[0] for line in r.stdout.split("frames hold for each particle", 1)[1].splitlines()[1:]
                 if line.strip()}
     assert {"knot", "displacement_gradient"} <= arrays("--set", "stabiliser=adaptive_kernel") - arrays()
-    bad = mpisph(["info", "vertical_cut", "--set", "stabiliser=bogus"], timeout=120)
+    bad = in_process(["info", "vertical_cut", "--set", "stabiliser=bogus"], capsys)
     assert_clean_error(bad, "parameter stabiliser must be one of")
     assert bad.stdout == ""
 
 
-def test_list_takes_no_argument_and_describes_each_case_by_its_first_paragraph():
-    r = mpisph(["list"], timeout=120)
+def test_list_takes_no_argument_and_describes_each_case_by_its_first_paragraph(capsys):
+    r = in_process(["list"], capsys)
     assert r.returncode == 0, r.stderr
     cavity = next(line for line in r.stdout.splitlines() if line.startswith("lid_driven_cavity "))
     assert cavity.endswith("(`--set Re=1000 nx=100`).")  # its docstring's first line ends mid-sentence
-    assert_clean_error(mpisph(["list", "extra"], timeout=120), "usage: python -m mpisph list")
+    assert_clean_error(in_process(["list", "extra"], capsys), "usage: python -m mpisph list")
 
 
 def test_an_output_interval_below_the_time_step_is_warned_of(tmp_path):
