@@ -175,9 +175,9 @@ def _check_layout(frame, module, written, overrides, case):
     """Refuse a restart from ``frame`` (written with the parameters ``written``) whose ``overrides``
     build ``case`` with particles or a domain other than the frame's: a restart moves on the frame's
     particles, so the spacing or the shape of a body cannot change there."""
-    from .case import build_case, resolve_params
+    from .case import case_of_frame
 
-    if _layout(case) != _layout(build_case(module, resolve_params(module, {}, base=written))):
+    if _layout(case) != _layout(case_of_frame(written, module)):
         changed = " ".join(f"{k}={v}" for k, v in overrides.items() if k not in ("t_end", "output_interval"))
         raise InputError(f"a restart goes on with the particles of {frame}, which --set {changed} would place "
                          "otherwise: start a new run to change them")

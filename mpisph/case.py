@@ -423,9 +423,10 @@ def build_case(module, values):
     return module.setup(SimpleNamespace(**values))
 
 
-def case_of_frame(params):
+def case_of_frame(params, module=None):
     """The Case a frame was written with, built again from the frame's parameters (``params`` of
-    io.frames.read_frame); a parameter newer than the frame takes its default."""
-    module = load_case_module(params["case"])
+    io.frames.read_frame) by its case's ``module`` (default: the one the frame names); a parameter
+    newer than the frame takes its default."""
+    module = load_case_module(params["case"]) if module is None else module
     return build_case(module, resolve_params(module, {}, base=params))
 
