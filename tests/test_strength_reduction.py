@@ -1,17 +1,19 @@
-"""scripts/strength_reduction.py: the reduced strength of each stage and the stage table read from a
-run's frames and diagnostics, on a run built by hand."""
+"""mpisph/strength_reduction.py: the reduced strength, a stage's outcome read from its frames and
+diagnostics, the search's order of stages on hand-built runs, and two real stages of a coarse cut."""
 
 import math
+import os
 
 import numpy as np
 import pytest
 from mpi4py import MPI
 
-from mpisph.io.frames import frame_path, write_frame
+from mpisph import strength_reduction
+from mpisph.io.frames import frame_path, list_frames, read_frame, write_frame
 from repo_script import load_script
 
-strength_reduction = load_script("strength_reduction")
 DP = 0.1
+SOIL = {"cohesion": 5e3, "phi": 20.0, "psi": 0.0}
 
 
 def test_the_factor_divides_the_cohesion_and_the_tangents_of_the_angles():
@@ -21,51 +23,99 @@ def test_the_factor_divides_the_cohesion_and_the_tangents_of_the_angles():
     assert math.tan(math.radians(psi)) == pytest.approx(math.tan(math.radians(10.0)) / 1.25, rel=1e-12)
 
 
-def test_after_the_first_stage_settles_a_stage_that_moves_the_body_beyond_the_slide_share_slid(tmp_path):
-    """A 10-layer block (H = 1 m) that moves its particles by 0.01 m in its first stage (the release),
-    not at all in the second and by 0.03 m (0.03 H, beyond SLIDE) in the third; kinetic energy peaking
-    0.25 s into each stage."""
+def write_block(directory, index, t, shift):
+    """Frame ``index`` at time ``t`` of a 10-layer block (H = 1 m) moved right by ``shift`` [m]."""
     i, j = np.meshgrid(np.arange(10), np.arange(10), indexing="ij")
     x = (np.c_[i.ravel(), j.ravel()] + 0.5) * DP
     n = len(x)
-    for index, (t, shift) in enumerate(((0.0, 0.0), (1.0, 0.01), (2.0, 0.01), (3.0, 0.04))):
-        fields = {"x": x + [shift, 0.0], "gid": np.arange(n, dtype=np.int64), "kind": np.zeros(n, np.int8),
-                  "v": np.zeros((n, 2)), "rho": np.ones(n), "mass": np.ones(n)}
-        write_frame(frame_path(str(tmp_path), index), MPI.COMM_SELF, fields, time=t, step=index, dim=2,
-                    params={"case": "block", "dp": DP})
-    t = np.arange(0.0, 3.01, 0.25)
-    energy = np.where(np.isclose(t % 1.0, 0.25), 5.0, 1.0)
-    (tmp_path / "diagnostics.csv").write_text("t,step,kinetic_energy\n" + "".join(
-        f"{float(a)!r},{k},{float(e)!r}\n" for k, (a, e) in enumerate(zip(t, energy))))
-    soil = {"cohesion": 5e3, "phi": 20.0, "psi": 0.0}
-    height, rows = strength_reduction.stage_rows(str(tmp_path), soil, [(0.9, 0.0, 1.0), (1.0, 1.0, 2.0),
-                                                                       (1.1, 2.0, 3.0)])
-    assert height == pytest.approx(1.0, rel=1e-12)
-    release, stood, slid = ([cell.strip() for cell in row.strip("|").split("|")] for row in rows)
-    assert release[7] == "settling" and float(release[5]) == pytest.approx(0.01, abs=1e-4)
-    assert stood[0] == "1" and stood[3] == "5 at +0.25" and float(stood[5]) == 0.0 and stood[7] == "stood"
-    assert slid[1] == f"{5 / 1.1:.3f}" and float(slid[5]) == pytest.approx(0.03, abs=1e-4)
-    assert float(slid[6]) == pytest.approx(0.04, abs=1e-4) and slid[7] == "slid"
+    fields = {"x": x + [shift, 0.0], "gid": np.arange(n, dtype=np.int64), "kind": np.zeros(n, np.int8),
+              "v": np.zeros((n, 2)), "rho": np.ones(n), "mass": np.ones(n)}
+    write_frame(frame_path(str(directory), index), MPI.COMM_SELF, fields, time=t, step=index, dim=2,
+                params={"case": "block", "dp": DP})
 
 
-def test_the_stages_follow_each_other_the_first_settle_seconds_long():
-    assert strength_reduction.stage_times([0.6, 0.7, 0.8], 2.0, 1.0) == [(0.6, 0.0, 2.0), (0.7, 2.0, 3.0),
-                                                                         (0.8, 3.0, 4.0)]
+def write_diagnostics(directory, times, energies):
+    (directory / "diagnostics.csv").write_text("t,step,kinetic_energy\n" + "".join(
+        f"{float(t)!r},{k},{float(e)!r}\n" for k, (t, e) in enumerate(zip(times, energies))))
+
+
+def test_a_stage_that_moves_the_body_beyond_the_slide_share_slid_and_the_release_settles(tmp_path):
+    """The release moves the block by 0.01 H over 1 s; a restart of it by nothing, another by 0.03 H
+    (beyond SLIDE); their kinetic energy peaks 0.25 s into each."""
+    release, stood, slid = (tmp_path / name for name in ("release", "stood", "slid"))
+    for directory, shift in ((release, 0.01), (stood, 0.01), (slid, 0.04)):
+        directory.mkdir()
+        write_block(directory, 1, 1.0 if directory == release else 2.0, shift)
+    write_block(release, 0, 0.0, 0.0)
+    write_diagnostics(release, [0.0, 0.25, 0.5, 1.0], [0.0, 5.0, 1.0, 0.5])
+    for directory in (stood, slid):
+        write_diagnostics(directory, [1.25, 1.5, 2.0], [5.0, 1.0, 0.25])
+    first, end = read_frame(list_frames(release)[0]), read_frame(list_frames(release)[-1])
+    settled = strength_reduction.stage_outcome(0.9, release, first, first, settling=True)
+    assert settled.outcome == "settling" and settled.moved == pytest.approx(0.01, abs=1e-12)
+    assert (settled.peak_energy, settled.peak_time, settled.end_energy) == (5.0, 0.25, 0.5)
+    held = strength_reduction.stage_outcome(1.0, stood, end, first)
+    assert held.outcome == "stood" and held.moved == pytest.approx(0.0, abs=1e-12)
+    assert (held.start, held.end, held.peak_time) == (1.0, 2.0, 0.25)
+    gone = strength_reduction.stage_outcome(1.1, slid, end, first)
+    assert gone.outcome == "slid" and gone.moved == pytest.approx(0.03, abs=1e-12)
+    assert gone.since_release == pytest.approx(0.04, abs=1e-12)
+    rows = strength_reduction.table([settled, held, gone], SOIL)
+    assert rows[4].startswith(f"| 1.1 | {5 / 1.1:.3f} |") and rows[4].endswith("| 0.0300 | 0.040 | slid |")
+
+
+def hand_built_launch(tmp_path, safety_factor, launched):
+    """A ``launch`` that writes a stage's frames by hand: the block creeps 0.001 H per stage at a
+    factor below ``safety_factor`` and slides 0.03 H above it; each stage's factor (from its reduced
+    cohesion) and the frame it restarted go into ``launched``."""
+    def launch(name, case, arguments):
+        directory = tmp_path / name
+        directory.mkdir()
+        factor = SOIL["cohesion"] / float(next(a for a in arguments if a.startswith("cohesion="))[9:])
+        t_end = float(arguments[arguments.index("--t-end") + 1])
+        if "--restart" in arguments:
+            before = read_frame(arguments[arguments.index("--restart") + 1])
+            t0, index, shift = before["t"], 1 + len(launched), before["x"][0, 0] - 0.5 * DP
+        else:
+            write_block(directory, 0, 0.0, 0.0)
+            t0, index, shift, before = 0.0, 1, 0.0, None
+        write_block(directory, index, t_end, shift + (0.03 if factor > safety_factor else 0.001))
+        write_diagnostics(directory, [t0 + 0.1, t_end], [1.0, 0.5])
+        launched.append((round(factor, 9), None if before is None else round(before["t"], 9)))
+        return str(directory)
+    return launch
+
+
+def test_the_search_climbs_to_the_first_slide_then_halves_the_bracket_from_the_last_stage_that_stood(tmp_path):
+    launched = []
+    stages = strength_reduction.search(hand_built_launch(tmp_path, 0.72, launched), "block", ["dp=0.1"], SOIL,
+                                       [0.6, 0.65, 0.7, 0.75, 0.8], 2.0, 1.0, bisect=2)
+    # 0.8 never runs: the 0.75 stage slid; 0.725 slides, 0.7125 stands; each restarts the last that stood
+    assert launched == [(0.6, None), (0.65, 2.0), (0.7, 3.0), (0.75, 4.0), (0.725, 4.0), (0.7125, 4.0)]
+    assert [s.outcome for s in stages] == ["settling", "stood", "stood", "slid", "slid", "stood"]
+    assert [os.path.basename(s.directory) for s in stages][::5] == ["stage00_F0.6", "stage05_F0.7125"]
+    assert strength_reduction.bracket(stages) == (pytest.approx(0.7125, rel=1e-12), 0.725)
+    strength_reduction.write_record(str(tmp_path), stages)
+    assert strength_reduction.read_record(str(tmp_path)) == stages
+
+
+def test_with_no_slide_the_bracket_is_open_and_no_stage_bisects(tmp_path):
+    launched = []
+    stages = strength_reduction.search(hand_built_launch(tmp_path, 2.0, launched), "block", [], SOIL,
+                                       [0.8, 0.9], 1.0, 1.0, bisect=3)
+    assert len(launched) == 2 and strength_reduction.bracket(stages) == (0.9, None)
 
 
 def test_each_stage_restarts_the_last_frame_with_its_reduced_strength(tmp_path):
-    """A coarse cut in two short stages: the second stage's frames carry c / F and atan(tan phi / F)
-    of the case's own strength, and the table has a row per stage."""
-    from mpisph.io.frames import list_frames, read_frame
-
+    """A coarse cut in two short stages by mpirun (scripts/strength_reduction.py's launch): the second
+    stage's frames carry c / F and atan(tan phi / F) of the case's own strength and start where the
+    release ended."""
+    launch = load_script("strength_reduction").launcher(str(tmp_path), 1)
     sets = ["dp=0.2", "kernel=wendland_c2", "h_factor=1.3"]
-    soil = {"cohesion": 5e3, "phi": 20.0, "psi": 0.0}
-    stages = strength_reduction.stage_times([1.0, 1.25], 0.02, 0.02)
-    strength_reduction.run_stages("vertical_cut", sets, soil, stages, 0.02, 1, str(tmp_path))
-    last = read_frame(list_frames(str(tmp_path))[-1])
-    assert last["t"] == pytest.approx(0.04, rel=1e-9)
-    c, phi, psi = strength_reduction.reduced(soil, 1.25)
-    assert (last["params"]["cohesion"], last["params"]["phi"], last["params"]["psi"]) == (c, phi, psi)
-    assert float(last["params"]["dp"]) == 0.2
-    _, rows = strength_reduction.stage_rows(str(tmp_path), soil, stages)
-    assert len(rows) == 2 and rows[0].endswith("| settling |")
+    stages = strength_reduction.search(launch, "vertical_cut", sets, SOIL, [1.0, 1.25], 0.02, 0.02)
+    assert [(s.start, s.end) for s in stages] == [(0.0, pytest.approx(0.02)), (pytest.approx(0.02),
+                                                                                pytest.approx(0.04))]
+    last = read_frame(list_frames(stages[1].directory)[-1])
+    assert (last["params"]["cohesion"], last["params"]["phi"], last["params"]["psi"]) == \
+        strength_reduction.reduced(SOIL, 1.25)
+    assert float(last["params"]["dp"]) == 0.2 and stages[0].outcome == "settling"

@@ -1,0 +1,140 @@
+"""The factor of safety of a Drucker-Prager case by strength reduction (Zienkiewicz et al. 1975;
+Griffiths & Lane 1999; with SPH, Bui et al. 2011): c and tan phi (and tan psi) divided by a factor F
+in stages, each a restart of the last stage that stood.
+
+A stage is one run in a directory of its own: the first, the case's release, runs from the start with
+the first factor's strength and settles; every later one restarts from the last frame of the last
+stage that stood with a larger factor. A stage slid when the 99th percentile of its particles'
+displacements over it passes SLIDE of the body's height (a cut at rest creeps by a few thousandths of
+H a second, docs/CUTS.md). ``search`` climbs the factors to the first that slides, then halves the
+bracket between the last that stood and the first that slid; the factor of safety lies in it. No
+stage restarts a slid one: a slide changes the body's shape, so later stages would test another body.
+Analysis only: the step loop does not load this module.
+"""
+
+import json
+import math
+import os
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
+from mpisph.measure import cut_height, displacement_percentile
+
+SLIDE = 0.015  # share of the height a stage's 99 % displacement passes when the body slid
+RECORD = "stages.json"  # the stages of a search, in the order they ran, in its directory
+
+
+def reduced(params, factor):
+    """(c, phi, psi) of ``params`` with c and the tangents of the angles divided by ``factor``."""
+    def angle(name):
+        return math.degrees(math.atan(math.tan(math.radians(float(params[name]))) / factor))
+    return float(params["cohesion"]) / factor, angle("phi"), angle("psi")
+
+
+@dataclass
+class Stage:
+    """One stage's outcome: its factor, directory and time span [s]; the kinetic-energy peak [J] of its
+    diagnostics and when it came [s into the stage]; the kinetic energy at its end [J]; the 99 %
+    displacement over the stage and since the release, over the height H; 'settling' (the first
+    stage), 'stood' or 'slid'."""
+    factor: float
+    directory: str
+    start: float
+    end: float
+    peak_energy: float
+    peak_time: float
+    end_energy: float
+    moved: float
+    since_release: float
+    outcome: str
+
+
+def stage_outcome(factor, directory, before, release, settling=False):
+    """The Stage run in ``directory`` from the frame ``before``, the last of the stage it restarted
+    (for the release, ``settling``, its own first frame); ``release`` is the release's first frame,
+    whose height is H."""
+    last = read_frame(list_frames(directory)[-1])
+    diag = read_diagnostics(os.path.join(directory, "diagnostics.csv"))
+    inside = diag["t"] > before["t"] + 1e-9
+    energy, times = diag["kinetic_energy"][inside], diag["t"][inside]
+    k = int(np.argmax(energy))
+    height = cut_height(release)
+    moved = displacement_percentile(before, last) / height
+    outcome = "settling" if settling else "slid" if moved > SLIDE else "stood"
+    return Stage(factor, str(directory), float(before["t"]), float(last["t"]), float(energy[k]),
+                 float(times[k] - before["t"]), float(energy[-1]), moved,
+                 displacement_percentile(release, last) / height, outcome)
+
+
+def stage_arguments(soil, factor, sets=(), restart=None, t_end=None, interval=None):
+    """The mpisph arguments of a stage with ``factor``: the case's ``sets`` for the release, else
+    ``--restart`` of the frame ``restart``; the reduced strength; its end time and frame spacing."""
+    c, phi, psi = reduced(soil, factor)
+    strength = [f"cohesion={c!r}", f"phi={phi!r}", f"psi={psi!r}"]
+    start = ["--set", *sets, *strength] if restart is None else ["--restart", restart, "--set", *strength]
+    return [*start, "--t-end", repr(t_end), "--output-interval", repr(interval)]
+
+
+def search(launch, case, sets, soil, factors, settle, stage, bisect=0):
+    """Stages of ``case`` (parameters ``soil``, the --set items ``sets``): the release with factors[0]
+    for ``settle`` seconds, then a stage of ``stage`` seconds (frames a quarter of it apart) per
+    further factor from the last that stood, until one slides, then ``bisect`` stages at the middle of
+    the bracket. ``launch(name, case, arguments)`` runs one stage and returns its directory. Returns
+    the Stages in the order they ran."""
+    interval = stage / 4
+    first = launch(f"stage00_F{factors[0]:g}", case,
+                   stage_arguments(soil, factors[0], sets, t_end=settle, interval=interval))
+    release = read_frame(list_frames(first)[0])
+    stages = [stage_outcome(factors[0], first, release, release, settling=True)]
+    stood, slid = stages[0], None
+
+    def run(factor):
+        before = list_frames(stood.directory)[-1]
+        directory = launch(f"stage{len(stages):02d}_F{factor:g}", case, stage_arguments(
+            soil, factor, restart=before, t_end=stood.end + stage, interval=interval))
+        stages.append(stage_outcome(factor, directory, read_frame(before), release))
+        return stages[-1]
+
+    for factor in factors[1:]:
+        slid = run(factor)
+        if slid.outcome == "slid":
+            break
+        stood, slid = slid, None
+    for _ in range(bisect if slid is not None else 0):
+        middle = run(0.5 * (stood.factor + slid.factor))
+        stood, slid = (stood, middle) if middle.outcome == "slid" else (middle, slid)
+    return stages
+
+
+def bracket(stages):
+    """(the largest factor at which a stage stood or the release settled, the smallest at which one
+    slid, or None when none did): the factor of safety lies between them, if the release itself stood."""
+    slid = [s.factor for s in stages if s.outcome == "slid"]
+    return max(s.factor for s in stages if s.outcome != "slid"), min(slid, default=None)
+
+
+def write_record(directory, stages):
+    """Write the Stages to RECORD in ``directory``."""
+    with open(os.path.join(directory, RECORD), "w") as f:
+        json.dump([asdict(s) for s in stages], f, indent=1)
+
+
+def read_record(directory):
+    """The Stages that ``write_record`` wrote in ``directory``."""
+    with open(os.path.join(directory, RECORD)) as f:
+        return [Stage(**s) for s in json.load(f)]
+
+
+def table(stages, soil):
+    """The Markdown table of the Stages, with the reduced c and phi of ``soil``."""
+    lines = ["| F | c [kPa] | phi [deg] | peak kinetic energy [J] at [s into the stage] | kinetic energy at "
+             "the end [J] | 99 % displacement over the stage / H | since the release / H | over "
+             f"{SLIDE:g} H |", "|---|---|---|---|---|---|---|---|"]
+    for s in stages:
+        c, phi, _ = reduced(soil, s.factor)
+        lines.append(f"| {s.factor:g} | {c / 1e3:.3f} | {phi:.2f} | {s.peak_energy:.3g} at +{s.peak_time:.2f} | "
+                     f"{s.end_energy:.3g} | {s.moved:.4f} | {s.since_release:.3f} | {s.outcome} |")
+    return lines
