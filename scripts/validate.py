@@ -29,6 +29,7 @@ VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remed
                "column_collapse_2d": soils.column_collapse, "cohesive_failure_2d": soils.cohesive_failure,
                "remedies_cuts": soil_remedies.remedies_cuts, "remedies_cube_3d": soil_remedies.remedies_cube_3d,
                "vertical_cut_critical_height": cuts.vertical_cut_critical_height,
+               "safety_factor": cuts.safety_factor,
                "soil_cylinder_impact": soils.soil_cylinder,
                "inclined_plane": incline.inclined_plane, "inclined_plane_steady": incline.inclined_plane_steady,
                "inclined_plane_deep": incline.inclined_plane_deep,

@@ -3,11 +3,13 @@ it a wedge slides off its face (Chen 1975; Drescher & Detournay 1993; references
 
 import matplotlib.pyplot as plt
 
-from mpisph import measure, references
+from mpisph import measure, references, strength_reduction
+from mpisph.arguments import parse_sets
 from mpisph.case import load_case_module, resolve_params
+from mpisph.io.frames import list_frames, read_frame
 
 from .figures import save
-from .runs import run
+from .runs import run, run_directory
 from .soils import deposit_panel
 
 
@@ -73,3 +75,79 @@ def vertical_cut_critical_height(ranks):
             "creep (docs/CUTS.md, with dp = 0.0125 m beside it).")
     return ("Vertical cuts against their critical height (limit analysis)", "; ".join(cmds), rows,
             save(fig, "vertical_cut_critical_height.png"), note)
+
+
+SAFETY_FACTOR_RUNS = (  # case, its --set items, the factors climbed; bisected twice after the first slide
+    ("vertical_cut", SETTINGS, (0.6, 0.65, 0.7, 0.75, 0.8, 0.85)),
+    ("cohesive_failure_2d", ("density_reinit=free_surface",), (0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9)),
+)
+BISECT = 2
+SAFETY_FACTOR_TOLERANCE = 0.05  # the bracket's middle against Drescher & Detournay's factor: mpisph's own bar
+
+
+def stage_launch(case, ranks):
+    """A ``launch`` for strength_reduction.search: each stage a run of runs.run, under a name of its
+    case's, so that --reuse reads it again."""
+    def launch(name, stage_case, arguments):
+        run(f"{case}_srm_{name}", stage_case, arguments, ranks)
+        return str(run_directory(f"{case}_srm_{name}"))
+    return launch
+
+
+def shown(factor):
+    """A factor of the bracket as the table prints it: 'none' when no stage slid."""
+    return "none" if factor is None else f"{factor:g}"
+
+
+def safety_factor(ranks):
+    """The factor of safety by strength reduction of the case's own 2 m cuts, vertical_cut (002_'s soil
+    on the Wendland kernel) and cohesive_failure_2d (000_'s), against limit analysis."""
+    fig, axes = plt.subplots(2, 2, figsize=(12, 8))
+    rows, cmds = [], []
+    for k, (case, sets, factors) in enumerate(SAFETY_FACTOR_RUNS):
+        soil = resolve_params(load_case_module(case), parse_sets(list(sets)))
+        stages = strength_reduction.search(stage_launch(case, ranks), case, list(sets), soil, list(factors),
+                                           settle=2.0, stage=1.0, bisect=BISECT)
+        cmds.append(f".venv/bin/python scripts/strength_reduction.py {case} --set {' '.join(sets)} --factors "
+                    f"{' '.join(f'{f:g}' for f in factors)} --bisect {BISECT} -n {ranks} --out RUN")
+        release = read_frame(list_frames(stages[0].directory)[0])
+        height = measure.cut_height(release)
+        associated, dilatant = references.vertical_cut_safety_factor(
+            soil["cohesion"], soil["phi"], soil["rho0"] * soil["g"], height, soil["psi"])
+        stood, slid = strength_reduction.bracket(stages)
+        middle = float("nan") if slid is None else 0.5 * (stood + slid)
+        error = abs(middle / dilatant - 1.0)
+        label = f"{case}, H = {height:.2f} m, c = {soil['cohesion'] / 1e3:g} kPa, phi = {soil['phi']:g} deg"
+        rows.append((f"{label}: factor of safety (last F that stood - first that slid)",
+                     f"{stood:g}-{shown(slid)}",
+                     f"{dilatant:.3f} (psi = {soil['psi']:g}, Drescher & Detournay)",
+                     f"{error * 100:.1f} % (middle)", f"{SAFETY_FACTOR_TOLERANCE * 100:g} %",
+                     error <= SAFETY_FACTOR_TOLERANCE))
+        rows.append((f"{label}: first F that slid, below the associated factor (Chen; Radenkovic's bound)",
+                     shown(slid), f"{associated:.3f}", "-", "below",
+                     slid is not None and slid < associated))
+        ax = axes[0, k]
+        for outcome, marker in (("settling", "s"), ("stood", "o"), ("slid", "x")):
+            chosen = [s for s in stages if s.outcome == outcome]
+            ax.semilogy([s.factor for s in chosen], [s.moved for s in chosen], marker, ls="none", label=outcome)
+        ax.axhline(strength_reduction.SLIDE, color="grey", lw=0.5)
+        ax.axvline(dilatant, color="C3", ls="--", lw=0.8, label="Drescher & Detournay (psi = 0)")
+        ax.axvline(associated, color="C4", ls=":", lw=0.8, label="Chen (associated)")
+        ax.set_xlabel("F")
+        ax.set_ylabel("99 % displacement over the stage / H")
+        ax.set_title(case)
+        ax.legend(fontsize=8)
+        first_slid = next((s for s in stages if s.outcome == "slid"), stages[-1])
+        deposit_panel(fig, axes[1, k], read_frame(list_frames(first_slid.directory)[-1]), release,
+                      f"{case}, the stage at F = {first_slid.factor:g}, t = {first_slid.end:g} s")
+    note = ("Strength reduction (mpisph/strength_reduction.py, docs/CUTS.md): the cut is released with c and "
+            "tan phi (and tan psi) divided by the first factor and settles for 2 s; each larger factor restarts "
+            "the last stage that stood for 1 s, up to the first stage whose 99th percentile of displacements "
+            f"passes {strength_reduction.SLIDE:g} H; then two stages halve the bracket. Limit analysis gives the "
+            "factor at which the cut's height becomes critical: Chen's log-spiral for associated flow, which "
+            "bounds a non-associated soil's factor from above (Radenkovic), and Drescher & Detournay's reduced "
+            "strength for psi = 0, an estimate, not a bound; the 5 % bar on it is mpisph's own (no issue gives "
+            "one). The bottom row shows the first stage that slid, coloured by accumulated plastic strain over "
+            "the released cut's outline.")
+    return ("Factor of safety of the 2 m cuts by strength reduction", "; ".join(cmds), rows,
+            save(fig, "safety_factor.png"), note)
