@@ -1,7 +1,8 @@
 """Factor of safety of a Drucker-Prager case by strength reduction: stages that divide c and tan phi by F.
 
     .venv/bin/python scripts/strength_reduction.py CASE [--set NAME=VALUE ...] --factors 0.8 0.9 1.0 \
-        [--bisect 2] [--settle 2] [--stage 1] [-n 2] --out DIR [--report]
+        [--bisect 2] [--settle 2] [--stage 1] [-n 2] --out DIR
+    .venv/bin/python scripts/strength_reduction.py CASE [--set NAME=VALUE ...] --out DIR --report
 
 The release runs the case (its parameters with ``--set``) for ``--settle`` seconds with c and tan phi
 (and tan psi) divided by the first factor; each further factor restarts the last stage that stood for
@@ -38,7 +39,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("case")
     ap.add_argument("--set", dest="sets", nargs="+", action="extend", default=[], metavar="NAME=VALUE")
-    ap.add_argument("--factors", type=float, nargs="+", required=True, help="F of each stage, rising")
+    ap.add_argument("--factors", type=float, nargs="+", default=[], help="F of each stage, rising (not with --report)")
     ap.add_argument("--bisect", type=int, default=0, help="stages halving the bracket once a factor slid")
     ap.add_argument("--settle", type=float, default=2.0, help="simulated time of the release [s]")
     ap.add_argument("--stage", type=float, default=1.0, help="simulated time of each further stage [s]")
@@ -46,12 +47,14 @@ def main():
     ap.add_argument("--out", required=True, help="directory of the stages")
     ap.add_argument("--report", action="store_true", help="print the stages recorded in --out, run none")
     a = ap.parse_args()
-    if sorted(a.factors) != a.factors:
-        ap.error("--factors must rise")
+    if not a.report and (not a.factors or sorted(a.factors) != a.factors):
+        ap.error("--factors must be given, rising")
     out = os.path.abspath(a.out)  # the runs start in the repository's root (launch.mpirun_mpisph)
     case = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
     soil = resolve_params(load_case_module(case), parse_sets(a.sets))
     if a.report:
+        if not os.path.exists(os.path.join(out, strength_reduction.RECORD)):
+            ap.error(f"{out} holds no {strength_reduction.RECORD}: no search ran there")
         stages = strength_reduction.read_record(out)
     else:
         os.makedirs(out, exist_ok=True)
