@@ -1,5 +1,6 @@
 """Vertical cuts against limit analysis (docs/CUTS.md): below its critical height a cut stands, above
-it a wedge slides off its face (Chen 1975; Drescher & Detournay 1993; references.vertical_cut_critical_height)."""
+it a wedge slides off its face (Chen 1975; Drescher & Detournay 1993; references.vertical_cut_critical_height);
+and the factor of safety of the 2 m cuts by strength reduction (mpisph/strength_reduction.py)."""
 
 import matplotlib.pyplot as plt
 
@@ -66,7 +67,8 @@ def vertical_cut_critical_height(ranks):
     note = (f"002_'s soil (c = {p['cohesion'] / 1e3:g} kPa, phi = {p['phi']:g} deg, psi = {p['psi']:g}) in cuts "
             f"{p['L']:g} m long, lowered from the case's 2 m. Chen's log-spiral mechanism gives gamma H_c / c = "
             "3.83 tan(45 deg + phi / 2) for associated flow; Drescher & Detournay's reduction of c and tan phi "
-            "estimates it for psi = 0 (neither height bounds a non-associated soil rigorously). A cut stands "
+            "estimates it for psi = 0 (an estimate; only Chen's height bounds a non-associated soil, from above, by "
+            "Radenkovic's theorem). A cut stands "
             f"when its kinetic energy peaks within {PEAK_BY:g} s, as its face unloads elastically, and the 99th "
             f"percentile of its particles' displacements at 3 s stays below {MOVED:g} H; it fails when the energy "
             "peaks later, as a wedge slides off the face, and the wedge moves further. 000_'s Wendland kernel at "
