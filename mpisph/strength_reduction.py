@@ -22,6 +22,7 @@ import numpy as np
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import cut_height, displacement_percentile
+from mpisph.references import vertical_cut_safety_factor
 
 SLIDE = 0.015  # share of the height a stage's 99 % displacement passes when the body slid
 RECORD = "stages.json"  # the stages of a search, in the order they ran, in its directory
@@ -114,6 +115,20 @@ def bracket(stages):
     slid, or None when none did): the factor of safety lies between them, if the release itself stood."""
     slid = [s.factor for s in stages if s.outcome == "slid"]
     return max(s.factor for s in stages if s.outcome != "slid"), min(slid, default=None)
+
+
+def release_frame(stages):
+    """The first frame of the release, the first of the Stages."""
+    return read_frame(list_frames(stages[0].directory)[0])
+
+
+def limit_factors(release, soil):
+    """(H of the frame ``release``, and the factors F at which limit analysis puts a vertical cut of
+    that height in ``soil`` critical: for associated flow, Chen's, and for the soil's psi, Drescher &
+    Detournay's; references.vertical_cut_safety_factor)."""
+    height = cut_height(release)
+    return (height, *vertical_cut_safety_factor(soil["cohesion"], soil["phi"], soil["rho0"] * soil["g"], height,
+                                                soil["psi"]))
 
 
 def write_record(directory, stages):

@@ -20,10 +20,7 @@ from pathlib import Path
 from mpisph import strength_reduction
 from mpisph.arguments import parse_sets
 from mpisph.case import load_case_module, resolve_params
-from mpisph.io.frames import list_frames, read_frame
 from mpisph.launch import mpirun_mpisph
-from mpisph.measure import cut_height
-from mpisph.references import vertical_cut_safety_factor
 
 
 def launcher(out, ranks):
@@ -61,11 +58,10 @@ def main():
         stages = strength_reduction.search(launcher(out, a.ranks), case, a.sets, soil, a.factors, a.settle,
                                               a.stage, a.bisect)
         strength_reduction.write_record(out, stages)
-    height = cut_height(read_frame(list_frames(stages[0].directory)[0]))
-    limit = vertical_cut_safety_factor(soil["cohesion"], soil["phi"], soil["rho0"] * soil["g"], height, soil["psi"])
+    height, associated, dilatant = strength_reduction.limit_factors(strength_reduction.release_frame(stages), soil)
     print(f"{a.case}: H = {height:.3f} m, c = {soil['cohesion'] / 1e3:g} kPa, phi = {soil['phi']:g} deg; limit "
-          f"analysis puts a vertical cut of this height critical at F = {limit[0]:.3f} (associated) and "
-          f"{limit[1]:.3f} (psi = {soil['psi']:g}, Drescher & Detournay)")
+          f"analysis puts a vertical cut of this height critical at F = {associated:.3f} (associated) and "
+          f"{dilatant:.3f} (psi = {soil['psi']:g}, Drescher & Detournay)")
     print("\n".join(strength_reduction.table(stages, soil)))
     stood, slid = strength_reduction.bracket(stages)
     print(f"factor of safety: {stood:g} to {slid:g}" if slid is not None else

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from mpisph import strength_reduction
+from mpisph import references, strength_reduction
 from mpisph.io.frames import frame_path, list_frames, read_frame, write_frame
 from repo_script import load_script
 
@@ -95,6 +95,10 @@ def test_the_search_climbs_to_the_first_slide_then_halves_the_bracket_from_the_l
     assert [s.outcome for s in stages] == ["settling", "stood", "stood", "slid", "slid", "stood"]
     assert [os.path.basename(s.directory) for s in stages][::5] == ["stage00_F0.6", "stage05_F0.7125"]
     assert strength_reduction.bracket(stages) == (pytest.approx(0.7125, rel=1e-12), 0.725)
+    soil = dict(SOIL, rho0=1850.0, g=9.8)
+    height, *factors = strength_reduction.limit_factors(strength_reduction.release_frame(stages), soil)
+    assert height == pytest.approx(1.0, rel=1e-12)  # the release's first frame, not the slid block's last
+    assert factors == list(references.vertical_cut_safety_factor(5e3, 20.0, 1850.0 * 9.8, 1.0, 0.0))
     strength_reduction.write_record(str(tmp_path), stages)
     assert strength_reduction.read_record(str(tmp_path)) == stages
 

@@ -112,10 +112,8 @@ def safety_factor(ranks):
                                            settle=2.0, stage=1.0, bisect=BISECT)
         cmds.append(f".venv/bin/python scripts/strength_reduction.py {case} --set {' '.join(sets)} --factors "
                     f"{' '.join(f'{f:g}' for f in factors)} --bisect {BISECT} -n {ranks} --out RUN")
-        release = read_frame(list_frames(stages[0].directory)[0])
-        height = measure.cut_height(release)
-        associated, dilatant = references.vertical_cut_safety_factor(
-            soil["cohesion"], soil["phi"], soil["rho0"] * soil["g"], height, soil["psi"])
+        release = strength_reduction.release_frame(stages)
+        height, associated, dilatant = strength_reduction.limit_factors(release, soil)
         stood, slid = strength_reduction.bracket(stages)
         middle = float("nan") if slid is None else 0.5 * (stood + slid)
         error = abs(middle / dilatant - 1.0)
