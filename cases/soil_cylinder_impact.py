@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from mpisph.case import ANGLE, POISSON, SOLID_PARAMS, Body, Case, Front, Param, Wall
+from mpisph.case import ANGLE, POISSON, SOLID_PARAMS, Body, Case, Front, Param, Wall, h_factor_param
 from mpisph.geometry import bed_layers, depth, disk, support_layers
 from mpisph.kernels import KERNELS
 from mpisph.soil import drucker_prager, scheme_choice, scheme_params
@@ -32,7 +32,7 @@ PARAMS = {
     **{**scheme_params(alpha=1.0, beta=1.0),  # 002_ Table 2
        "scheme": scheme_params()["scheme"].with_default("classic_granular")},
     "kernel": Param("cubic_spline", "-", "smoothing kernel (002_: the cubic B-spline)", choices=tuple(KERNELS)),
-    "h_factor": Param(1.5, "-", "smoothing length h = h_factor * dp (002_ Table 2: h = 1.5 dp)", positive=True),
+    "h_factor": h_factor_param(1.5, "002_ Table 2: h = 1.5 dp"),
     "t_end": Param(0.01, "s", "simulated end time (the spread levels off by 5 ms)", positive=True),
     "output_interval": Param(0.0005, "s", "simulated time between frames", positive=True),
 }

@@ -6,7 +6,7 @@ soil cases, so that the remedies compare on one scheme (docs/VALIDATION.md, sect
 The step follows the CFL condition; ``--set max_time_step=5e-5`` caps it at 002_ Table 4's.
 """
 
-from mpisph.case import Param
+from mpisph.case import Param, h_factor_param
 from mpisph.kernels import KERNELS
 from mpisph.soil import block_on_floor, scheme_params, soil_params
 
@@ -17,7 +17,7 @@ PARAMS = {
     **soil_params(rho0=1850.0, E=1.5e6, nu=0.2, cohesion=5.0e3, phi=20.0),  # 002_ Table 3
     **scheme_params(alpha=1.0, beta=0.0),  # 002_ Table 4
     "kernel": Param("cubic_spline", "-", "smoothing kernel (002_: the cubic B-spline)", choices=tuple(KERNELS)),
-    "h_factor": Param(1.5, "-", "smoothing length h = h_factor * dp (002_ Table 4: h = 1.5 dp)", positive=True),
+    "h_factor": h_factor_param(1.5, "002_ Table 4: h = 1.5 dp"),
     "t_end": Param(2.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
 }

@@ -44,10 +44,13 @@ def _overrides(args):
         if value == "":
             raise InputError(f"{option} needs a path, not an empty one")
     out = parse_sets(args.overrides)
-    if args.t_end is not None:
-        out["t_end"] = repr(args.t_end)
-    if args.output_interval is not None:
-        out["output_interval"] = repr(args.output_interval)
+    for name, option, value in (("t_end", "--t-end", args.t_end), ("output_interval", "--output-interval",
+                                                                  args.output_interval)):
+        if value is None:
+            continue
+        if name in out and float(out[name]) != value:
+            raise InputError(f"{option} {value:g} and --set {name}={out[name]} disagree: keep one")
+        out[name] = repr(value)
     return out
 
 
@@ -77,7 +80,8 @@ def cmd_info(name, overrides):
     params = all_params(module)
     width = max(map(len, params))
     for key, p in params.items():
-        extra = f" (one of {', '.join(p.choices)})" if p.choices else ""
+        extra = (f" (one of {', '.join(p.choices)})" if p.choices else
+                 f" (in [{p.bounds[0]:g}, {p.bounds[1]:g}))" if p.bounds else "")
         print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
     print()
     print("frames hold for each particle, with these parameters (ParaView's point arrays; x gives the points):")

@@ -18,11 +18,14 @@ def add_set(parser):
 
 
 def parse_sets(items):
-    """{name: text} of ``--set`` items."""
+    """{name: text} of ``--set`` items; a name given twice with different values is refused rather
+    than one of them silently dropped."""
     out = {}
     for item in items:
         if "=" not in item:
             raise InputError(f"--set takes NAME=VALUE, not {item!r}")
-        name, value = item.split("=", 1)
-        out[name.strip()] = value.strip()
+        name, value = (part.strip() for part in item.split("=", 1))
+        if out.get(name, value) != value:
+            raise InputError(f"--set gives {name} twice, {out[name]!r} and {value!r}: keep one")
+        out[name] = value
     return out

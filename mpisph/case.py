@@ -92,11 +92,23 @@ class Param:
 POISSON = (0.0, 0.5)  # bounds of a Poisson's ratio: up to 1/2, where the bulk modulus diverges
 ANGLE = (0.0, 90.0)  # bounds of a friction or dilatancy angle [deg]
 
+H_FACTOR = (1.0, 3.0)  # bounds of h / dp (h_factor_param)
+
+
+def h_factor_param(default=1.3, source=""):
+    """The smoothing length in spacings, h_factor = h / dp, in H_FACTOR: below 1 the support (2 h)
+    no longer reaches the lattice's second ring and the kernel sums lose their consistency; at 3 a
+    3D particle already has about 900 neighbours, ten times the cost of the default 1.3, for a
+    resolution set by h, not dp. ``source`` says where the case's default comes from."""
+    return Param(default, "-", "smoothing length h = h_factor * dp" + (f" ({source})" if source else ""),
+                 bounds=H_FACTOR)
+
+
 RUN_PARAMS = {
     "t_end": Param(1.0, "s", "simulated end time", positive=True),
     "output_interval": Param(0.1, "s", "simulated time between frames", positive=True),
     "kernel": Param("wendland_c2", "-", "smoothing kernel", choices=tuple(KERNELS)),
-    "h_factor": Param(1.3, "-", "smoothing length h = h_factor * dp", positive=True),
+    "h_factor": h_factor_param(),
     "time_stepping": Param("dual", "-", "dual: 001_ Eqs. 9-11; single: 000_ Eq. 38",
                            choices=("dual", "single")),
     "max_time_step": Param(0.0, "s", "upper bound of the time step, 0: none (002_ steps at 1e-6 s and 5e-5 s "
@@ -139,16 +151,19 @@ def fluid_stabiliser_params(default, also=None):
             **SHIFTING_PARAMS, **ARTIFICIAL_STRESS_PARAMS, **UTVF_PARAMS}
 
 
-DENSITY_REINITS = ("none", "inner", "free_surface")  # Case.density_reinit (physics/density_reinit.py)
+# Case.density_reinit (physics/density_reinit.py): each mode and what it does
+DENSITY_REINITS = {"inner": "on every particle",
+                   "free_surface": "not below the evolved density's share near a free surface",
+                   "none": "continuity alone"}
 
 
-def density_reinit_param(default, choices=DENSITY_REINITS, why=""):
+def density_reinit_param(default, choices=tuple(DENSITY_REINITS), why=""):
     """The parameter choosing the density reinitialisation (Case.density_reinit), with the case's
-    default, the modes it offers and, in ``why``, the case's reason for its default."""
-    return Param(default, "-", "density by kernel summation (001_ Eq. 8) every configuration: inner, on every "
-                 "particle; free_surface, not below the evolved density's share near a free surface "
-                 "(physics/density_reinit.py); none, continuity alone" + (f"; {why}" if why else ""),
-                 choices=choices)
+    default, the modes it offers (its help names those alone) and, in ``why``, the case's reason for
+    its default."""
+    modes = "; ".join(f"{mode}, {DENSITY_REINITS[mode]}" for mode in DENSITY_REINITS if mode in choices)
+    return Param(default, "-", "density by kernel summation (001_ Eq. 8) every configuration (physics/"
+                 f"density_reinit.py): {modes}" + (f"; {why}" if why else ""), choices=choices)
 
 
 def limiter_param(default):
@@ -349,6 +364,13 @@ class Case:
             raise InputError(f"density_reinit must be one of {', '.join(DENSITY_REINITS)}, not {self.density_reinit!r}")
 
 
+def closest(name, names):
+    """The one of ``names`` nearest to ``name``, letter case ignored (for a "did you mean"), or None."""
+    by_lower = {n.lower(): n for n in names}
+    close = difflib.get_close_matches(name.lower(), list(by_lower), n=1)
+    return by_lower[close[0]] if close else None
+
+
 def case_names():
     return sorted(p.stem for p in CASES_DIR.glob("*.py") if not p.stem.startswith("_"))
 
@@ -363,8 +385,8 @@ def load_case_module(name):
     if not path.is_file():
         if name.endswith(".py"):
             raise InputError(f"no case file {name!r}")
-        close = difflib.get_close_matches(name, case_names(), n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else "; see 'python -m mpisph list'"
+        close = closest(name, case_names())
+        hint = f"; did you mean {close!r}?" if close else "; see 'python -m mpisph list'"
         raise InputError(f"unknown case {name!r}{hint}")
     spec = importlib.util.spec_from_file_location(f"mpisph_case_{path.stem}", path)
     module = importlib.util.module_from_spec(spec)
@@ -408,8 +430,8 @@ def resolve_params(module, overrides, base=None):
     values.update(base or {})
     for name, text in overrides.items():
         if name not in params:
-            close = difflib.get_close_matches(name, list(params), n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
+            close = closest(name, params)
+            hint = f"; did you mean {close!r}?" if close else ""
             raise InputError(f"unknown parameter {name!r} for this case{hint}")
         values[name] = params[name].parse(name, text)
     for name, value in values.items():

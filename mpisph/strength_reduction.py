@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from mpisph.arguments import parse_sets
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import cut_height, displacement_percentile
@@ -72,10 +73,13 @@ def stage_outcome(factor, directory, before, release, settling=False):
 
 def stage_arguments(soil, factor, sets=(), restart=None, t_end=None, interval=None):
     """The mpisph arguments of a stage with ``factor``: the case's ``sets`` for the release, else
-    ``--restart`` of the frame ``restart``; the reduced strength; its end time and frame spacing."""
+    ``--restart`` of the frame ``restart``; the reduced strength (in place of any strength in
+    ``sets``); its end time and frame spacing."""
     c, phi, psi = reduced(soil, factor)
-    strength = [f"cohesion={c!r}", f"phi={phi!r}", f"psi={psi!r}"]
-    start = ["--set", *sets, *strength] if restart is None else ["--restart", restart, "--set", *strength]
+    case_sets = parse_sets(sets) if restart is None else {}
+    values = {**case_sets, "cohesion": repr(c), "phi": repr(phi), "psi": repr(psi)}  # the reduced strength wins
+    start = [] if restart is None else ["--restart", restart]
+    start += ["--set", *(f"{name}={value}" for name, value in values.items())]
     return [*start, "--t-end", repr(t_end), "--output-interval", repr(interval)]
 
 

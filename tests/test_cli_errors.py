@@ -84,6 +84,12 @@ def in_process(argv, capsys):
     (["elliptical_drop", "--t-end", "inf"], ["t_end must be a finite number, not inf"]),
     (["elliptical_drop", "--set", "max_time_step=-1"], ["max_time_step must lie in [0, inf), not -1.0"]),
     (["lube_collapse_2d", "--set", "mu_s_deg=95"], ["mu_s_deg must lie in [0, 90), not 95.0"]),
+    (["elliptical_drop", "--set", "h_factor=0.1"], ["h_factor must lie in [1, 3), not 0.1"]),
+    (["vertical_cut", "--set", "h_factor=100"], ["h_factor must lie in [1, 3), not 100.0"]),
+    (["elliptical_drop", "--set", "dp=0.3", "dp=0.2"], ["--set gives dp twice, '0.3' and '0.2': keep one"]),
+    (["elliptical_drop", "--set", "t_end=0.5", "--t-end", "0.4"], ["--t-end 0.4 and --set t_end=0.5 disagree"]),
+    (["ELLIPTICAL_DROP"], ["unknown case 'ELLIPTICAL_DROP'; did you mean 'elliptical_drop'?"]),
+    (["oscillating_beam", "--set", "h_over_dp=10"], ["unknown parameter 'h_over_dp'", "did you mean 'H_over_dp'?"]),
 ])
 def test_parameters_out_of_their_bounds(args, fragments, existing_output, capsys):
     out, marker = existing_output
@@ -307,6 +313,26 @@ def test_info_lists_the_arrays_an_option_adds_and_refuses_a_bad_one(capsys):
     bad = in_process(["info", "vertical_cut", "--set", "stabiliser=bogus"], capsys)
     assert_clean_error(bad, "parameter stabiliser must be one of")
     assert bad.stdout == ""
+
+
+def test_the_same_value_twice_is_one_value(capsys):
+    """A parameter given twice with one value is that value."""
+    r = in_process(["info", "elliptical_drop", "--set", "dp=0.05", "dp=0.05"], capsys)
+    assert r.returncode == 0, r.stderr
+
+
+def test_info_names_only_the_density_modes_the_case_offers_and_a_parameters_bounds(capsys):
+    """Each case's density_reinit help describes the modes it takes, and no other; a bounded
+    parameter's line ends with its bounds."""
+    def help_line(case, name="density_reinit"):
+        r = in_process(["info", case], capsys)
+        assert r.returncode == 0, r.stderr
+        return next(line for line in r.stdout.splitlines() if line.split()[:1] == [name])
+    taylor_green, drop, incline = help_line("taylor_green"), help_line("elliptical_drop"), help_line("inclined_plane")
+    assert "inner, on every particle" in taylor_green and "free_surface," not in taylor_green
+    assert "free_surface, not below" in drop and "inner," not in drop
+    assert all(f"{mode}," in incline for mode in ("inner", "free_surface", "none"))
+    assert help_line("vertical_cut", "h_factor").endswith("(002_ Table 4: h = 1.5 dp) (in [1, 3))")
 
 
 def test_list_takes_no_argument_and_describes_each_case_by_its_first_paragraph(capsys):

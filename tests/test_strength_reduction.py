@@ -23,6 +23,17 @@ def test_the_factor_divides_the_cohesion_and_the_tangents_of_the_angles():
     assert math.tan(math.radians(psi)) == pytest.approx(math.tan(math.radians(10.0)) / 1.25, rel=1e-12)
 
 
+def test_a_stage_sets_the_reduced_strength_once_in_place_of_the_cases_own():
+    """A strength among the case's --set items is replaced by the reduced one (mpisph refuses a name
+    given twice), the other items kept; a restart sets the reduced strength alone."""
+    c, phi, psi = strength_reduction.reduced(SOIL, 1.25)
+    release = strength_reduction.stage_arguments(SOIL, 1.25, ["H=1.5", "cohesion=5000"], t_end=1.0, interval=0.25)
+    assert release == ["--set", "H=1.5", f"cohesion={c!r}", f"phi={phi!r}", f"psi={psi!r}",
+                       "--t-end", "1.0", "--output-interval", "0.25"]
+    later = strength_reduction.stage_arguments(SOIL, 1.25, ["H=1.5"], restart="f.hdf", t_end=2.0, interval=0.25)
+    assert later[:3] == ["--restart", "f.hdf", "--set"] and later[3:6] == release[2:5]
+
+
 def write_block(directory, index, t, shift):
     """Frame ``index`` at time ``t`` of a 10-layer block (H = 1 m) moved right by ``shift`` [m]."""
     i, j = np.meshgrid(np.arange(10), np.arange(10), indexing="ij")
