@@ -351,9 +351,11 @@ def earth_pressure(phi_deg, cohesion):
 # toe, gamma H_c / c = 3.83 tan(45 deg + phi / 2) (Culmann's plane wedge gives 4 for 3.83). Limit
 # analysis assumes associated flow. For a dilatancy psi below phi, Drescher & Detournay (1993,
 # Geotechnique 43, 443-456) estimate the collapse by an associated soil of c* = eta c and tan phi* =
-# eta tan phi, eta = cos psi cos phi / (1 - sin psi sin phi) (exact for their translational mechanisms;
-# the bound theorems do not hold without associated flow). mpisph's Drucker-Prager cone is fitted to
-# Mohr-Coulomb in plane strain (000_ Eq. 14), so an associated soil collapses at the same heights.
+# eta tan phi, eta = cos psi cos phi / (1 - sin psi sin phi) (exact for their translational mechanisms,
+# an estimate otherwise: the lower-bound theorem does not hold without associated flow, while the
+# associated height still bounds a non-associated soil from above, Radenkovic's first theorem).
+# mpisph's Drucker-Prager cone is fitted to Mohr-Coulomb in plane strain (000_ Eq. 14), so an
+# associated soil collapses at the same heights.
 VERTICAL_CUT_LOG_SPIRAL = 3.83
 
 
