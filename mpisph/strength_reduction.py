@@ -7,8 +7,9 @@ the first factor's strength and settles; every later one restarts from the last 
 stage that stood with a larger factor. A stage slid when the 99th percentile of its particles'
 displacements over it passes SLIDE of the body's height (a cut at rest creeps by a few thousandths of
 H a second, docs/CUTS.md). ``search`` climbs the factors to the first that slides, then halves the
-bracket between the last that stood and the first that slid; the factor of safety lies in it. No
-stage restarts a slid one: a slide changes the body's shape, so later stages would test another body.
+bracket between the last that stood and the first that slid; the factor of safety lies in it, and
+``hold`` runs the last that stood on for longer, to see that it keeps standing. No stage restarts a
+slid one: a slide changes the body's shape, so later stages would test another body.
 Analysis only: the step loop does not load this module.
 """
 
@@ -89,36 +90,49 @@ def search(launch, case, sets, soil, factors, settle, stage, bisect=0):
     further factor from the last that stood, until one slides, then ``bisect`` stages at the middle of
     the bracket. ``launch(name, case, arguments)`` runs one stage and returns its directory. Returns
     the Stages in the order they ran."""
-    interval = stage / 4
     first = launch(f"stage00_F{factors[0]:g}", case,
-                   stage_arguments(soil, factors[0], sets, t_end=settle, interval=interval))
+                   stage_arguments(soil, factors[0], sets, t_end=settle, interval=stage / 4))
     release = read_frame(list_frames(first)[0])
     stages = [stage_outcome(factors[0], first, release, release, settling=True)]
     stood, slid = stages[0], None
-
-    def run(factor):
-        before = list_frames(stood.directory)[-1]
-        directory = launch(f"stage{len(stages):02d}_F{factor:g}", case, stage_arguments(
-            soil, factor, restart=before, t_end=stood.end + stage, interval=interval))
-        stages.append(stage_outcome(factor, directory, read_frame(before), release))
-        return stages[-1]
-
     for factor in factors[1:]:
-        slid = run(factor)
+        slid = restart_stage(launch, case, stages, soil, stood, factor, stage)
         if slid.outcome == "slid":
             break
         stood, slid = slid, None
     for _ in range(bisect if slid is not None else 0):
-        middle = run(0.5 * (stood.factor + slid.factor))
+        middle = restart_stage(launch, case, stages, soil, stood, 0.5 * (stood.factor + slid.factor), stage)
         stood, slid = (stood, middle) if middle.outcome == "slid" else (middle, slid)
     return stages
 
 
+def restart_stage(launch, case, stages, soil, stood, factor, seconds, suffix=""):
+    """A stage with ``factor`` for ``seconds`` (frames a quarter of it apart) from the last frame of
+    the Stage ``stood``, in the directory stageNN_F<factor><suffix>; its Stage is appended to
+    ``stages`` and returned."""
+    before = list_frames(stood.directory)[-1]
+    directory = launch(f"stage{len(stages):02d}_F{factor:g}{suffix}", case, stage_arguments(
+        soil, factor, restart=before, t_end=stood.end + seconds, interval=seconds / 4))
+    stages.append(stage_outcome(factor, directory, read_frame(before), release_frame(stages)))
+    return stages[-1]
+
+
+def hold(launch, case, stages, soil, seconds):
+    """The last stage at the bracket's lower factor run on at that factor for ``seconds`` more (its
+    directory ends in _hold); its Stage is appended to ``stages`` and returned. A cut that stood for
+    one stage may still give way later: ``bracket`` then counts the factor as slid."""
+    stood = [s for s in stages if s.outcome != "slid" and s.factor == bracket(stages)[0]][-1]
+    return restart_stage(launch, case, stages, soil, stood, stood.factor, seconds, suffix="_hold")
+
+
 def bracket(stages):
-    """(the largest factor at which a stage stood or the release settled, the smallest at which one
-    slid, or None when none did): the factor of safety lies between them, if the release itself stood."""
+    """(the largest factor below every slide at which a stage stood or the release settled, the
+    smallest at which one slid, or None when none did): the factor of safety lies between them. A
+    factor that stood in one stage and slid in a later one (a hold) counts as slid."""
     slid = [s.factor for s in stages if s.outcome == "slid"]
-    return max(s.factor for s in stages if s.outcome != "slid"), min(slid, default=None)
+    least = min(slid, default=math.inf)
+    stood = max((s.factor for s in stages if s.outcome != "slid" and s.factor < least), default=None)
+    return stood, min(slid, default=None)
 
 
 def release_frame(stages):

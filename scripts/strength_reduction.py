@@ -1,7 +1,8 @@
 """Factor of safety of a Drucker-Prager case by strength reduction: stages that divide c and tan phi by F.
 
     .venv/bin/python scripts/strength_reduction.py CASE [--set NAME=VALUE ...] --factors 0.8 0.9 1.0 \
-        [--bisect 2] [--settle 2] [--stage 1] [-n 2] --out DIR
+        [--bisect 2] [--settle 2] [--stage 1] [--hold 1] [-n 2] --out DIR
+    .venv/bin/python scripts/strength_reduction.py CASE [--set NAME=VALUE ...] --out DIR --hold 1
     .venv/bin/python scripts/strength_reduction.py CASE [--set NAME=VALUE ...] --out DIR --report
 
 The release runs the case (its parameters with ``--set``) for ``--settle`` seconds with c and tan phi
@@ -10,7 +11,9 @@ The release runs the case (its parameters with ``--set``) for ``--settle`` secon
 (mpisph/strength_reduction.py says how a stage is judged). Each stage runs in a directory of its own
 under DIR (``stage03_F0.725``, say). Then a row per stage and the bracket; for a body on a floor the
 first line also gives the factors at which limit analysis puts a vertical cut of its height critical
-(references.vertical_cut_safety_factor). ``--report`` prints the stages already recorded in DIR.
+(references.vertical_cut_safety_factor). ``--hold S`` runs the last factor that stood on for S seconds
+more, after the search or, without ``--factors``, on the search recorded in DIR: a factor whose stage
+gives way there counts as slid. ``--report`` prints the stages already recorded in DIR.
 """
 
 import argparse
@@ -43,20 +46,30 @@ def main():
     ap.add_argument("-n", "--ranks", type=int, default=1)
     ap.add_argument("--out", required=True, help="directory of the stages")
     ap.add_argument("--report", action="store_true", help="print the stages recorded in --out, run none")
+    ap.add_argument("--hold", type=float, default=0.0, metavar="SECONDS",
+                    help="run the last factor that stood on for SECONDS more: after the search, or without "
+                         "--factors on the search recorded in --out")
     a = ap.parse_args()
-    if not a.report and (not a.factors or sorted(a.factors) != a.factors):
+    if a.hold < 0:
+        ap.error(f"--hold takes seconds, not {a.hold:g}")
+    if a.report and (a.factors or a.hold):
+        ap.error("--report runs no stage: leave out --factors and --hold")
+    if not (a.report or a.hold or a.factors) or sorted(a.factors) != a.factors:
         ap.error("--factors must be given, rising")
     out = os.path.abspath(a.out)  # the runs start in the repository's root (launch.mpirun_mpisph)
     case = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
     soil = resolve_params(load_case_module(case), parse_sets(a.sets))
-    if a.report:
-        if not os.path.exists(os.path.join(out, strength_reduction.RECORD)):
-            ap.error(f"{out} holds no {strength_reduction.RECORD}: no search ran there")
-        stages = strength_reduction.read_record(out)
-    else:
+    if a.factors:
         os.makedirs(out, exist_ok=True)
         stages = strength_reduction.search(launcher(out, a.ranks), case, a.sets, soil, a.factors, a.settle,
                                               a.stage, a.bisect)
+    elif not os.path.exists(os.path.join(out, strength_reduction.RECORD)):
+        ap.error(f"{out} holds no {strength_reduction.RECORD}: no search ran there")
+    else:
+        stages = strength_reduction.read_record(out)
+    if a.hold:
+        strength_reduction.hold(launcher(out, a.ranks), case, stages, soil, a.hold)
+    if not a.report:
         strength_reduction.write_record(out, stages)
     height, associated, dilatant = strength_reduction.limit_factors(strength_reduction.release_frame(stages), soil)
     print(f"{a.case}: H = {height:.3f} m, c = {soil['cohesion'] / 1e3:g} kPa, phi = {soil['phi']:g} deg; limit "
@@ -64,8 +77,9 @@ def main():
           f"{dilatant:.3f} (psi = {soil['psi']:g}, Drescher & Detournay)")
     print("\n".join(strength_reduction.table(stages, soil)))
     stood, slid = strength_reduction.bracket(stages)
-    print(f"factor of safety: {stood:g} to {slid:g}" if slid is not None else
-          f"no stage slid: the factor of safety is above {stood:g}")
+    print(f"factor of safety: {stood:g} to {slid:g}" if stood is not None and slid is not None else
+          f"no stage slid: the factor of safety is above {stood:g}" if slid is None else
+          f"the first factor slid: the factor of safety is below {slid:g}")
 
 
 if __name__ == "__main__":

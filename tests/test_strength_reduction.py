@@ -114,6 +114,21 @@ def test_the_search_climbs_to_the_first_slide_then_halves_the_bracket_from_the_l
     assert strength_reduction.read_record(str(tmp_path)) == stages
 
 
+def test_a_hold_runs_the_last_factor_that_stood_on_and_a_factor_that_gives_way_counts_as_slid(tmp_path):
+    launched = []
+    stages = strength_reduction.search(hand_built_launch(tmp_path, 0.72, launched), "block", [], SOIL,
+                                       [0.6, 0.7, 0.75], 2.0, 1.0, bisect=1)
+    assert strength_reduction.bracket(stages) == (0.7, 0.725)
+    kept = strength_reduction.hold(hand_built_launch(tmp_path, 0.72, launched), "block", stages, SOIL, 2.0)
+    assert launched[-1] == (0.7, 3.0) and (kept.start, kept.end, kept.outcome) == (3.0, 5.0, "stood")
+    assert os.path.basename(kept.directory) == "stage04_F0.7_hold"
+    assert strength_reduction.bracket(stages) == (0.7, 0.725)
+    # the same factor, held again from the hold, now gives way: the bracket falls to the factor below
+    gone = strength_reduction.hold(hand_built_launch(tmp_path, 0.65, launched), "block", stages, SOIL, 1.0)
+    assert launched[-1] == (0.7, 5.0) and gone.outcome == "slid"
+    assert strength_reduction.bracket(stages) == (0.6, 0.7)
+
+
 def test_with_no_slide_the_bracket_is_open_and_no_stage_bisects(tmp_path):
     launched = []
     stages = strength_reduction.search(hand_built_launch(tmp_path, 2.0, launched), "block", [], SOIL,
