@@ -106,7 +106,8 @@ def test_the_walls_take_the_momentum_of_their_friction(sheets, law, pressure):
                                             ("law_pressure=carried", "does not keep"),
                                             ("channel_width=0 wall_friction_deg=20", "give channel_width too")])
 def test_bad_side_walls_are_one_line_errors(tmp_path, setting, words):
-    r = mpisph([*SHEET, "channel_width=0.1", *setting.split(), "--out", tmp_path, "--quiet"], ranks=1)
+    sets = {"channel_width": "0.1", **dict(word.split("=") for word in setting.split())}  # a name once
+    r = mpisph([*SHEET, *(f"{k}={v}" for k, v in sets.items()), "--out", tmp_path, "--quiet"], ranks=1)
     assert r.returncode == 2
     lines = stderr_lines(r.stderr)
     assert len(lines) == 1 and words in lines[0]
