@@ -48,10 +48,18 @@ def _overrides(args):
                                                                   args.output_interval)):
         if value is None:
             continue
-        if name in out and float(out[name]) != value:
+        if name in out and not _same_number(out[name], value):
             raise InputError(f"{option} {value:g} and --set {name}={out[name]} disagree: keep one")
         out[name] = repr(value)
     return out
+
+
+def _same_number(text, value):
+    """Whether the --set ``text`` is the number ``value`` (text that is no number is not)."""
+    try:
+        return float(text) == value
+    except ValueError:
+        return False
 
 
 def cmd_list():

@@ -88,6 +88,8 @@ def in_process(argv, capsys):
     (["vertical_cut", "--set", "h_factor=100"], ["h_factor must lie in [1, 3), not 100.0"]),
     (["elliptical_drop", "--set", "dp=0.3", "dp=0.2"], ["--set gives dp twice, '0.3' and '0.2': keep one"]),
     (["elliptical_drop", "--set", "t_end=0.5", "--t-end", "0.4"], ["--t-end 0.4 and --set t_end=0.5 disagree"]),
+    (["elliptical_drop", "--set", "output_interval=fine", "--output-interval", "0.4"],
+     ["--output-interval 0.4 and --set output_interval=fine disagree"]),
     (["ELLIPTICAL_DROP"], ["unknown case 'ELLIPTICAL_DROP'; did you mean 'elliptical_drop'?"]),
     (["oscillating_beam", "--set", "h_over_dp=10"], ["unknown parameter 'h_over_dp'", "did you mean 'H_over_dp'?"]),
 ])
