@@ -120,8 +120,13 @@ def restart_stage(launch, case, stages, soil, stood, factor, seconds, suffix="")
 def hold(launch, case, stages, soil, seconds):
     """The last stage at the bracket's lower factor run on at that factor for ``seconds`` more (its
     directory ends in _hold); its Stage is appended to ``stages`` and returned. A cut that stood for
-    one stage may still give way later: ``bracket`` then counts the factor as slid."""
-    stood = [s for s in stages if s.outcome != "slid" and s.factor == bracket(stages)[0]][-1]
+    one stage may still give way later: ``bracket`` then counts the factor as slid. Raises ValueError
+    when no factor stands below every slide (a hold of the release gave way)."""
+    lower = bracket(stages)[0]
+    if lower is None:
+        raise ValueError(f"no factor stood below every slide (the release, F = {stages[0].factor:g}, gave way "
+                         "in a hold): nothing to hold; search again from a smaller first factor")
+    stood = [s for s in stages if s.outcome != "slid" and s.factor == lower][-1]
     return restart_stage(launch, case, stages, soil, stood, stood.factor, seconds, suffix="_hold")
 
 

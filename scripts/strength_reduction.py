@@ -68,7 +68,10 @@ def main():
     else:
         stages = strength_reduction.read_record(out)
     if a.hold:
-        strength_reduction.hold(launcher(out, a.ranks), case, stages, soil, a.hold)
+        try:
+            strength_reduction.hold(launcher(out, a.ranks), case, stages, soil, a.hold)
+        except ValueError as e:
+            ap.error(str(e))
     if not a.report:
         strength_reduction.write_record(out, stages)
     height, associated, dilatant = strength_reduction.limit_factors(strength_reduction.release_frame(stages), soil)

@@ -127,6 +127,11 @@ def test_a_hold_runs_the_last_factor_that_stood_on_and_a_factor_that_gives_way_c
     gone = strength_reduction.hold(hand_built_launch(tmp_path, 0.65, launched), "block", stages, SOIL, 1.0)
     assert launched[-1] == (0.7, 5.0) and gone.outcome == "slid"
     assert strength_reduction.bracket(stages) == (0.6, 0.7)
+    # the release's factor gives way too: no factor is left to hold
+    strength_reduction.hold(hand_built_launch(tmp_path, 0.5, launched), "block", stages, SOIL, 1.0)
+    assert strength_reduction.bracket(stages) == (None, 0.6)
+    with pytest.raises(ValueError, match="nothing to hold"):
+        strength_reduction.hold(hand_built_launch(tmp_path, 0.5, launched), "block", stages, SOIL, 1.0)
 
 
 def test_with_no_slide_the_bracket_is_open_and_no_stage_bisects(tmp_path):
