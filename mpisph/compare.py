@@ -24,9 +24,9 @@ diagnostics:
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
 runs seen along y) and OUT/compare_energy.png the kinetic and total energy against time. A run
 that blows up (status 3) is measured at its last frame; a run that fails otherwise is listed as
-failed, with its error line, and compare then exits with status 1 once the others are written. A
-stabiliser named twice, or a ``--colour`` field that a run's frames would not hold, stops compare
-before any run.
+failed, with its error line (its whole standard error is in OUT/<stabiliser>/stderr.txt), and
+compare then exits with status 1 once the others are written. A stabiliser named twice, or a
+``--colour`` field that a run's frames would not hold, stops compare before any run.
 """
 
 import os
@@ -114,14 +114,21 @@ def check(case_name, stabilisers, overrides, colour):
 
 
 def run_one(case_name, stabiliser, overrides, ranks, out):
-    """Run the case with ``stabiliser`` into ``out``; how it ended: done, blew up, or failed."""
+    """Run the case with ``stabiliser`` into ``out``; how it ended: done, blew up, or failed, and why.
+
+    A run that did not finish leaves its whole standard error in ``out``/stderr.txt; the reason given
+    is its last line from mpisph (``mpisph: ...``), so that what Open MPI or numba writes after it
+    does not take its place."""
     sets = [f"{k}={v}" for k, v in {**overrides, "stabiliser": stabiliser}.items()]
     r = mpirun_mpisph([case_name, "--set", *sets, "--out", out, "--quiet"], ranks=ranks)
     if r.returncode == 0:
         return "done", ""
-    if r.returncode == 3:
-        return "blew up", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else ""
-    return "failed", r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"exit {r.returncode}"
+    Path(out).mkdir(parents=True, exist_ok=True)
+    (Path(out) / "stderr.txt").write_text(r.stderr)
+    lines = [line for line in r.stderr.strip().splitlines() if line.strip()]
+    ours = [line for line in lines if line.startswith("mpisph:")]
+    why = (ours or lines or [f"exit {r.returncode}"])[-1]
+    return ("blew up" if r.returncode == 3 else "failed"), why
 
 
 def potential_energy(d):

@@ -116,10 +116,12 @@ def test_an_output_path_that_is_a_file_is_one_line(tmp_path):
 @pytest.mark.ranks
 def test_a_run_that_fails_makes_compare_fail_after_the_table(tmp_path):
     """Three ranks on a domain of two slabs: each run stops with its one-line error, which compare
-    prints and puts in its table, and compare exits 1."""
+    prints and puts in its table, and compare exits 1; each run's whole standard error is kept."""
     r = compare("elliptical_drop", "--stabiliser", "none,utvf", "--set", "dp=1.0", "--out", tmp_path, "-n", "3")
     assert r.returncode == 1, r.stderr
-    assert r.stdout.count("only 2 slabs") == 2 and "none, utvf failed" in r.stdout
+    assert r.stdout.count("only 2 slabs") == 2 and "none, utvf failed" in r.stdout, r.stdout
+    for name in ("none", "utvf"):
+        assert "mpisph: error: 3 ranks" in (tmp_path / name / "stderr.txt").read_text()
     assert [row.split(" | ")[1] for row in table_rows(tmp_path / "compare.md")][0].startswith("failed: ")
 
 
