@@ -3,8 +3,9 @@
 SPEC is a JSON file: a list of ``[ranks, argv]``, run in that order. Each run takes the first
 ``ranks`` ranks of the launch as its communicator, while the others wait for it without spinning.
 A small case's run is mostly the start-up of Python, numba's cache and MPI (about 2 s of a 2.4 s
-run of the 2D column on one rank), so a case's runs on 1, 2 and 3 ranks share one start-up.
-A run that does not end with status 0 ends the launch with its status (1 for an exception)."""
+run of the 2D column on one rank), so the runs of a case's variants on 1, 2 and 3 ranks share one
+start-up. A run that does not end with status 0 ends the launch with its status (1 for an
+exception), after a line that names it."""
 
 import json
 import sys
@@ -33,13 +34,12 @@ def run_all(spec, world):
                 status = main(argv, comm)
             except Exception:  # main raises on a 1-rank communicator: end the launch, not leave the rest waiting
                 traceback.print_exc()
-                sys.stderr.flush()
-                world.Abort(1)
-            comm.Free()
+                status = 1
             if status:
                 print(f"runs_in_one_launch: {' '.join(argv)} on {ranks} ranks ended with status {status}",
                       file=sys.stderr, flush=True)
                 world.Abort(status)
+            comm.Free()
         wait_for_all(world)
 
 
