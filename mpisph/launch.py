@@ -36,10 +36,11 @@ def mpirun_mpisph(args, ranks=1, timeout=None, root=ROOT, accept=None):
     return mpirun_python(["-m", "mpisph", *args], ranks=ranks, timeout=timeout, root=root, accept=accept)
 
 
-def mpirun_python(args, ranks=1, timeout=None, root=ROOT, accept=None):
-    """``mpirun -n ranks python args`` as ``mpirun_mpisph`` starts it."""
+def mpirun_python(args, ranks=1, timeout=None, root=ROOT, accept=None, env=None):
+    """``mpirun -n ranks python args`` as ``mpirun_mpisph`` starts it; ``env`` holds variables that
+    override the caller's environment."""
     cmd = ["mpirun", "-n", str(ranks), sys.executable, *map(str, args)]
-    env = dict(MPI_ENV, **os.environ)
+    env = dict(MPI_ENV, **os.environ, **(env or {}))
     env["PYTHONPATH"] = str(root) + os.pathsep + env.get("PYTHONPATH", "")
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env, cwd=root)
     if accept is not None and r.returncode not in accept:
