@@ -172,8 +172,8 @@ def launch(tmp_path_factory, case):
     if len(keys) > 1:
         again = out[keys[0]]["again"] = out[keys[0]][1].with_name("again")
         args = CASES[keys[0]][0]
-        to_middle = [args[args.index("--output-interval") + 1] if i == args.index("--t-end") + 1 else a
-                     for i, a in enumerate(args)]
+        t_end = args.index("--t-end") + 1
+        to_middle = [*args[:t_end], args[args.index("--output-interval") + 1], *args[t_end + 1:]]
         spec.append([1, [case, *to_middle, "--out", str(again), "--quiet"]])
     (base / "spec.json").write_text(json.dumps(spec))
     r = mpirun_python([Path(__file__).parent / "runs_in_one_launch.py", base / "spec.json"], ranks=3,
