@@ -307,9 +307,13 @@ case "$MODE" in
         case_name="${MPISPH_DEMO_CASE:-column_collapse_2d}"
         out_dir="${MPISPH_DEMO_OUT:-runs/$case_name}"
         case_args=()
-        # coarser than the case's default 0.002: 800 particles, about a minute on 2 ranks;
-        # extra arguments come later, so `demo --set dp=0.002` still wins
-        if [ "$case_name" = column_collapse_2d ]; then
+        # coarser than the case's default 0.002: 800 particles, about a minute on 2 ranks, unless
+        # the extra arguments set dp themselves (`demo --set dp=0.002`: a dp given twice is refused)
+        user_dp=0
+        for arg in "$@"; do
+            case "$arg" in dp=*) user_dp=1 ;; esac
+        done
+        if [ "$case_name" = column_collapse_2d ] && [ "$user_dp" = 0 ]; then
             case_args=(--set dp=0.005)
         fi
         log "running demo: mpirun -n 2 .venv/bin/python -m mpisph $case_name ${case_args[*]} --out $out_dir $*"
