@@ -140,19 +140,31 @@ def cmd_plot(out_dir, png_path=None):
     print(f"wrote {deposit_png(out_dir, png_path)}")
 
 
-def _prepare_out_dir(comm, path, start, keep_later=False):
+def _prepare_out_dir(comm, path, start, interval, keep_later=False, restart_frame=None):
     """Create the output directory on rank 0, check it can be written, and delete the frames an
     earlier run wrote there after ``start``, the time this run starts from (-inf from the start);
     with ``keep_later`` (a restart into its frame's directory that no --out named) refuse instead
-    when there are such frames."""
-    from .io.frames import drop_frames_after, frames_after
+    when there are such frames. Frames are numbered by t / ``interval``: refuse a run whose frames
+    would write over a frame it keeps (stored up to ``start``), but ``restart_frame``, the frame a
+    restart with its own run's output interval goes on from, which that run would also replace
+    (a frame that a signal or the end time put between two output times)."""
+    from .io.frames import (drop_frames_after, frame_path, frame_time, frames_after,
+                            frames_kept_and_numbered_from, regular_frame_number)
 
     problem = None
     if comm.rank == 0:
         later = frames_after(path, start) if keep_later else []
+        first = regular_frame_number(start, interval) + 1 if start > -float("inf") else 0
+        over = [p for p in frames_kept_and_numbered_from(path, start, first)
+                if restart_frame is None or not os.path.samefile(p, restart_frame)]
         if later:
             problem = (f"{path} holds {len(later)} frame(s) after t = {start:g} s, which a restart there "
                        f"replaces: give --out {path} to replace them, or --out another directory")
+        elif over:
+            problem = (f"this run numbers its frames by t / output_interval = {interval:g} s from "
+                       f"{os.path.basename(frame_path(path, first))} on, which would write over "
+                       f"{os.path.basename(over[0])} (t = {frame_time(over[0]):g} s) in {path}: keep the "
+                       "output_interval it was written with, or give --out another directory")
         else:
             try:
                 os.makedirs(path, exist_ok=True)
@@ -242,7 +254,9 @@ def run(args, comm):
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
-    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), keep_later=restarted and not args.out)
+    own_interval = restarted and values["output_interval"] == written["output_interval"]
+    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), values["output_interval"],
+                     keep_later=restarted and not args.out, restart_frame=args.restart if own_interval else None)
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
                                                                   wall_force_columns(case), barrier_load_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)

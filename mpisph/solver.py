@@ -48,7 +48,7 @@ from . import surface
 from .blowup import COINCIDENT, PROBLEMS, first_bad_particle, first_coincident_pair
 from .context import StepContext
 from .errors import BlowUp, NoConvergence, Stopped
-from .io.frames import frame_path, write_frame
+from .io.frames import frame_path, regular_frame_number, write_frame
 from .io.series import add_to_series
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
@@ -82,7 +82,7 @@ class Simulation:
         self.decomp = SlabDecomposition(comm, case.slab_axis, lo[case.slab_axis],
                                         hi[case.slab_axis], self.support)
         self.halo = Halo(self.decomp, self.support, lo, hi, case.periodic)
-        self.frame_index = int(np.floor(t / params["output_interval"] + 1e-9))
+        self.frame_index = regular_frame_number(t, params["output_interval"])
         self.advection_steps = 0
         self.rebalances = 0  # new cuts after the first ones (diagnostics.csv)
         self.dt = 0.0
@@ -220,7 +220,7 @@ class Simulation:
             if frame_due or self.advection_steps % self.params["diagnostics_every"] == 0:
                 self._record()
             if frame_due:
-                self.frame_index = int(np.floor(self.t / interval + 1e-9))
+                self.frame_index = regular_frame_number(self.t, interval)
                 if self.t >= t_end:
                     self.frame_index = max(self.frame_index, int(np.ceil(t_end / interval - 1e-9)))
                 self.write_frame()

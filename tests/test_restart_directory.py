@@ -1,6 +1,7 @@
 """Where a restart without --out writes: on in its frame's directory (the run it continues), read
 from wherever it is started and through a link to the frame; a one-line refusal, touching nothing,
-when that directory holds frames after the restart's time, which it would replace."""
+when that directory holds frames after the restart's time, which it would replace, or when another
+output interval would number a frame over one it keeps."""
 
 import os
 import subprocess
@@ -61,3 +62,22 @@ def test_a_restart_that_would_replace_later_frames_needs_out(stopped, tmp_path):
     r = mpisph(*RUN, "--restart", "run/frame_00001.hdf", "--t-end", "0.03", "--out", "run", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert times(stopped) == pytest.approx([0.0, 0.01, 0.02, 0.03])
+
+
+def test_a_restart_that_would_renumber_the_frames_it_keeps_is_refused(stopped, tmp_path):
+    """Frames are numbered by t / output_interval: a restart from t = 0.02 s with frames every 0.02 s
+    would write t = 0.04 s as frame_00002.hdf, over the frame it starts from; with every 0.005 s its
+    frames are numbered from 5 on and keep the earlier ones."""
+    args = [a for a in RUN if a not in ("--output-interval", "0.01")]
+    before = {f: os.path.getmtime(f) for f in list_frames(stopped)}
+    r = mpisph(*args, "--restart", "run/frame_00002.hdf", "--t-end", "0.06", "--output-interval", "0.02",
+               cwd=tmp_path)
+    lines = stderr_lines(r.stderr)
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert "would write over frame_00002.hdf (t = 0.02 s)" in lines[0], lines[0]
+    assert {f: os.path.getmtime(f) for f in list_frames(stopped)} == before
+    r = mpisph(*args, "--restart", "run/frame_00002.hdf", "--t-end", "0.03", "--output-interval", "0.005",
+               cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert times(stopped) == pytest.approx([0.0, 0.01, 0.02, 0.025, 0.03])
+    assert [os.path.basename(f) for f in list_frames(stopped)][-2:] == ["frame_00005.hdf", "frame_00006.hdf"]

@@ -53,6 +53,12 @@ def frame_path(out_dir, index):
     return os.path.join(out_dir, f"{FRAME_PREFIX}{index:05d}{FRAME_SUFFIX}")
 
 
+def regular_frame_number(t, interval):
+    """The number of the last output time at or before ``t``: frames are numbered by t / output_interval,
+    so a run at ``t`` writes its next regular frame as this number + 1."""
+    return int(np.floor(t / interval + 1e-9))
+
+
 def _check_fields(comm, fields, dim):
     """Raise ValueError on every rank if any rank's ``fields`` are malformed.
 
@@ -314,6 +320,16 @@ def list_frames(out_dir):
 def frames_after(out_dir, time):
     """The complete frames of ``out_dir`` stored after ``time``."""
     return [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
+
+
+def frames_kept_and_numbered_from(out_dir, time, index):
+    """The complete frames of ``out_dir`` stored at or before ``time`` whose number is ``index`` or
+    more: those that a run starting at ``time`` there, whose next frame is number ``index``, would
+    write over."""
+    numbers = {p: os.path.basename(p)[len(FRAME_PREFIX):-len(FRAME_SUFFIX)] for p in _frame_files(out_dir)
+               if p.endswith(FRAME_SUFFIX)}
+    return sorted(p for p, number in numbers.items() if number.isdigit() and int(number) >= index
+                  and (_time_key(p) or (np.inf,))[0] <= time)
 
 
 def drop_frames_after(out_dir, time):
