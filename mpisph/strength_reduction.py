@@ -145,6 +145,22 @@ def release_frame(stages):
     return read_frame(list_frames(stages[0].directory)[0])
 
 
+def check_record(stages, case, soil):
+    """Raise ValueError unless the recorded ``stages`` ran ``case`` (its key) with the strength of
+    ``soil``: their release frame holds the case and the strength divided by the first factor, so a
+    table or a hold read from a record with another case or --set would carry a strength the stages
+    never had."""
+    written = release_frame(stages)["params"]
+    factor = stages[0].factor
+    ran = tuple(float(written.get(name, math.nan)) for name in ("cohesion", "phi", "psi"))
+    if written.get("case") != case or not np.allclose(ran, reduced(soil, factor), rtol=1e-9, atol=0.0):
+        c, phi, psi = reduced(dict(zip(("cohesion", "phi", "psi"), ran)), 1.0 / factor)  # times the factor
+        raise ValueError(f"the search recorded there ran case {written.get('case')!r} with c = {c / 1e3:.4g} kPa, "
+                         f"phi = {phi:.4g} deg, psi = {psi:.4g} deg (reduced by F = {factor:g} and on), which "
+                         f"case {case!r} with these --set items does not give: name the case and the --set "
+                         "items it ran with")
+
+
 def limit_factors(release, soil):
     """(H of the frame ``release``, and the factors F at which limit analysis puts a vertical cut of
     that height in ``soil`` critical: for associated flow, Chen's, and for the soil's psi, Drescher &

@@ -13,7 +13,8 @@ under DIR (``stage03_F0.725``, say). Then a row per stage and the bracket; for a
 first line also gives the factors at which limit analysis puts a vertical cut of its height critical
 (references.vertical_cut_safety_factor). ``--hold S`` runs the last factor that stood on for S seconds
 more, after the search or, without ``--factors``, on the search recorded in DIR: a factor whose stage
-gives way there counts as slid. ``--report`` prints the stages already recorded in DIR.
+gives way there counts as slid. ``--report`` prints the stages already recorded in DIR. Both read
+the record with the case and --set items of its search, which they check against its release.
 """
 
 import argparse
@@ -22,7 +23,7 @@ from pathlib import Path
 
 from mpisph import strength_reduction
 from mpisph.arguments import parse_sets
-from mpisph.case import load_case_module, resolve_params
+from mpisph.case import case_key, load_case_module, resolve_params
 from mpisph.launch import mpirun_mpisph
 
 
@@ -59,6 +60,8 @@ def main():
     out = os.path.abspath(a.out)  # the runs start in the repository's root (launch.mpirun_mpisph)
     case = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
     soil = resolve_params(load_case_module(case), parse_sets(a.sets))
+    if not {"cohesion", "phi", "psi"} <= soil.keys():
+        ap.error(f"{a.case} has no Drucker-Prager strength (cohesion, phi, psi) to reduce: choose a soil case")
     if a.factors:
         os.makedirs(out, exist_ok=True)
         stages = strength_reduction.search(launcher(out, a.ranks), case, a.sets, soil, a.factors, a.settle,
@@ -67,6 +70,10 @@ def main():
         ap.error(f"{out} holds no {strength_reduction.RECORD}: no search ran there")
     else:
         stages = strength_reduction.read_record(out)
+        try:
+            strength_reduction.check_record(stages, case_key(case), soil)
+        except ValueError as e:
+            ap.error(f"{out}: {e}")
     if a.hold:
         try:
             strength_reduction.hold(launcher(out, a.ranks), case, stages, soil, a.hold)

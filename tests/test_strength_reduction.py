@@ -154,3 +154,18 @@ def test_each_stage_restarts_the_last_frame_with_its_reduced_strength(tmp_path):
     assert (last["params"]["cohesion"], last["params"]["phi"], last["params"]["psi"]) == \
         strength_reduction.reduced(SOIL, 1.25)
     assert float(last["params"]["dp"]) == 0.2 and stages[0].outcome == "settling"
+    # a report or a hold read from the record must name the case and strength the stages ran with
+    strength_reduction.check_record(stages, "vertical_cut", SOIL)
+    for case, soil in (("vertical_cut", dict(SOIL, cohesion=2e3)), ("vertical_cut", dict(SOIL, phi=25.0)),
+                       ("cohesive_failure_2d", SOIL)):
+        with pytest.raises(ValueError, match="name the case and the --set items it ran with"):
+            strength_reduction.check_record(stages, case, soil)
+
+
+def test_the_script_refuses_a_case_without_a_strength_to_reduce(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr("sys.argv", ["strength_reduction.py", "dam_break_2d", "--factors", "0.8", "1.0",
+                                     "--out", str(tmp_path / "search")])
+    with pytest.raises(SystemExit) as stop:
+        load_script("strength_reduction").main()
+    assert stop.value.code == 2 and "has no Drucker-Prager strength" in capsys.readouterr().err
+    assert not (tmp_path / "search").exists()
