@@ -3,6 +3,8 @@ and leaves existing output alone."""
 
 import os
 import shutil
+import subprocess
+import sys
 from types import SimpleNamespace
 
 import pytest
@@ -353,3 +355,15 @@ def test_an_output_interval_below_the_time_step_is_warned_of(tmp_path):
     (line,) = stderr_lines(r.stderr)
     assert line.startswith("mpisph: warning: output_interval = 1e-07 s is shorter than the time step, "), line
     assert "each step ends at a frame and is cut to the interval" in line
+
+
+@pytest.mark.parametrize("command", [["list"], ["info", "column_collapse_2d"]])
+def test_output_into_a_closed_pipe_ends_without_a_traceback(command):
+    """`python -m mpisph list | head -1`: the reader is gone before mpisph writes (its start-up takes
+    a fraction of a second), so every write meets a closed pipe; mpisph stops with status 1, silently."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.Popen([sys.executable, "-m", "mpisph", *command], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env)
+    proc.stdout.close()
+    stderr = proc.stderr.read()
+    assert proc.wait(timeout=120) == 1 and stderr == ""
