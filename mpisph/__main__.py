@@ -80,20 +80,20 @@ def cmd_info(name, overrides):
     module = load_case_module(name)
     values = resolve_params(module, overrides)
     case = build_case(module, values)
+    fields = make_parts(case, values).frame_fields  # before any line: parameters that cannot go together stop here
     print(f"{name}: {describe(module)}")
     forces = ", ".join(type(f).__name__ for f in case.forces)
     print(f"scheme {case.scheme}, integrator {case.integrator}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
     print()
     params = all_params(module)
-    width = max(map(len, params))
+    width, default_width = max(map(len, params)), max(len(repr(p.default)) for p in params.values())
     for key, p in params.items():
         extra = (f" (one of {', '.join(p.choices)})" if p.choices else
                  f" (in [{p.bounds[0]:g}, {p.bounds[1]:g}))" if p.bounds else "")
-        print(f"  {key:<{width}}  {p.default!r:>14} {p.unit:<6} {p.doc}{extra}")
+        print(f"  {key:<{width}}  {p.default!r:>{default_width}} {p.unit:<6} {p.doc}{extra}")
     print()
     print("frames hold for each particle, with these parameters (ParaView's point arrays; x gives the points):")
-    fields = make_parts(case, values).frame_fields
     width = max(len(f.name) for f in fields)
     for f in fields:
         shape = "x".join(map(str, f.shape_in(case.dim))) or "scalar"

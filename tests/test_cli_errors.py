@@ -367,3 +367,18 @@ def test_output_into_a_closed_pipe_ends_without_a_traceback(command):
     proc.stdout.close()
     stderr = proc.stderr.read()
     assert proc.wait(timeout=120) == 1 and stderr == ""
+
+
+@pytest.mark.parametrize("argv", [["--set", "dp=0.01", "column_collapse_2d"],
+                                  ["info", "--set", "dp=0.01", "column_collapse_2d"],
+                                  ["compare", "--set", "dp=0.01", "column_collapse_2d", "--stabiliser", "none"]])
+def test_a_case_after_set_is_named_not_missing(argv, capsys):
+    """--set takes every word up to the next option, the case too: the error says which word."""
+    assert_clean_error(in_process(argv, capsys), "--set took 'column_collapse_2d'", "give the case before --set")
+
+
+def test_info_with_parameters_that_cannot_go_together_prints_only_the_error(capsys):
+    """The adaptive kernel on the column's Wendland kernel: one line, and no table before it."""
+    r = in_process(["info", "column_collapse_2d", "--set", "stabiliser=adaptive_kernel"], capsys)
+    assert_clean_error(r, "set kernel=cubic_spline")
+    assert r.stdout == ""
