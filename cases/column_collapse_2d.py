@@ -1,6 +1,8 @@
 """2D granular column collapse: a cohesionless Drucker-Prager column released against a back wall (000_ Sec. 5.1, Nguyen et al. 2017)."""
 
-from mpisph.case import Param
+from dataclasses import replace
+
+from mpisph.case import Front, Param
 from mpisph.soil import block_on_floor, scheme_params, soil_params
 
 PARAMS = {
@@ -16,4 +18,4 @@ PARAMS = {
 
 def setup(p):
     floor = max(3.0 * p.L, 2.5 * p.H + p.L)  # longer than any runout of the paper's columns
-    return block_on_floor(p, p.L, p.H, floor, "column")
+    return replace(block_on_floor(p, p.L, p.H, floor, "column"), front=Front((0.0, 0.0), (0,)))  # in diagnostics.csv
