@@ -16,12 +16,22 @@ import traceback
 from .arguments import Parser, add_set, parse_sets
 from .errors import BlowUp, InputError, Stopped
 
+WORD_COMMANDS = {  # the commands that take plain words: their usage and what they do, which --help prints
+    "list": ("python -m mpisph list", "Lists the cases, each with the first paragraph of its description."),
+    "report": ("python -m mpisph report FRAME [FRAME ...]",
+               "Prints each frame's tensile-instability measures (clustering, inner voids, fragments, closest "
+               "pair); for a solid or a soil also the share of paired particles since its run's first frame."),
+    "plot": ("python -m mpisph plot OUT_DIR [PNG]",
+             "Draws the last frame of the run in OUT_DIR (particles by plastic strain, or by speed, the walls "
+             "and the initial outline) into PNG (default OUT_DIR/deposit.png) and prints its path."),
+}
+
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
-         "       python -m mpisph list\n"
+         f"       {WORD_COMMANDS['list'][0]}\n"
          "       python -m mpisph info CASE [--set NAME=VALUE ...]\n"
-         "       python -m mpisph report FRAME [FRAME ...]\n"
-         "       python -m mpisph plot OUT_DIR [PNG]\n"
+         f"       {WORD_COMMANDS['report'][0]}\n"
+         f"       {WORD_COMMANDS['plot'][0]}\n"
          "       python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
          "[--out DIR] [--colour FIELD]")
 
@@ -35,7 +45,8 @@ def _parser():
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
                    "a run replaces the frames an earlier run wrote there after its start")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
-    p.add_argument("--quiet", action="store_true", help="no progress lines")
+    p.add_argument("--quiet", action="store_true",
+                   help="print neither the opening, progress nor closing lines (warnings and errors still print)")
     return p
 
 
@@ -289,9 +300,13 @@ def main(argv=None, comm=None):
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
     try:
+        if argv[:1] and argv[0] in WORD_COMMANDS and {"-h", "--help"} & set(argv[1:]):
+            if comm.rank == 0:
+                print("usage: {}\n\n{}".format(*WORD_COMMANDS[argv[0]]))
+            return 0
         if argv[:1] == ["list"]:
             if len(argv) != 1:
-                raise InputError("usage: python -m mpisph list")
+                raise InputError(f"usage: {WORD_COMMANDS['list'][0]}")
             if comm.rank == 0:
                 cmd_list()
             return 0
@@ -305,13 +320,13 @@ def main(argv=None, comm=None):
             return 0
         if argv[:1] == ["report"]:
             if len(argv) < 2:
-                raise InputError("usage: python -m mpisph report FRAME [FRAME ...]")
+                raise InputError(f"usage: {WORD_COMMANDS['report'][0]}")
             if comm.rank == 0:
                 cmd_report(argv[1:])
             return 0
         if argv[:1] == ["plot"]:
             if len(argv) not in (2, 3):
-                raise InputError("usage: python -m mpisph plot OUT_DIR [PNG]")
+                raise InputError(f"usage: {WORD_COMMANDS['plot'][0]}")
             if comm.rank == 0:
                 cmd_plot(*argv[1:])
             return 0

@@ -382,3 +382,13 @@ def test_info_with_parameters_that_cannot_go_together_prints_only_the_error(caps
     r = in_process(["info", "column_collapse_2d", "--set", "stabiliser=adaptive_kernel"], capsys)
     assert_clean_error(r, "set kernel=cubic_spline")
     assert r.stdout == ""
+
+
+@pytest.mark.parametrize("word, usage", [("list", "python -m mpisph list"),
+                                         ("report", "python -m mpisph report FRAME"),
+                                         ("plot", "python -m mpisph plot OUT_DIR [PNG]")])
+def test_help_of_a_word_command_is_its_usage_not_a_missing_file(word, usage, capsys):
+    """`report --help` used to look for a frame named --help."""
+    r = in_process([word, "--help"], capsys)
+    assert r.returncode == 0 and r.stderr == "" and r.stdout.startswith(f"usage: {usage}")
+    assert len(r.stdout.strip().splitlines()) == 3  # the usage, a blank line, what it does
