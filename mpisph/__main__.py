@@ -13,7 +13,7 @@ import tempfile
 import time
 import traceback
 
-from .arguments import Parser, add_set, parse_sets
+from .arguments import COMPARE_USAGE, Parser, add_set, add_times, parse_sets, with_times
 from .errors import BlowUp, InputError, Stopped
 
 WORD_COMMANDS = {  # the commands that take plain words: their usage and what they do, which --help prints
@@ -32,16 +32,14 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
          "       python -m mpisph info CASE [--set NAME=VALUE ...]\n"
          f"       {WORD_COMMANDS['report'][0]}\n"
          f"       {WORD_COMMANDS['plot'][0]}\n"
-         "       python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
-         "[--out DIR] [--colour FIELD]")
+         f"       {COMPARE_USAGE}")
 
 
 def _parser():
     p = Parser(prog="mpisph", usage=USAGE, description="MPI-parallel SPH for fluids and geomaterials.")
     p.add_argument("case")
     add_set(p)
-    p.add_argument("--t-end", type=float, help="simulated end time [s]")
-    p.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
+    add_times(p)
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
                    "a run replaces the frames an earlier run wrote there after its start")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
@@ -54,23 +52,7 @@ def _overrides(args):
     for option, value in (("--out", args.out), ("--restart", args.restart)):
         if value == "":
             raise InputError(f"{option} needs a path, not an empty one")
-    out = parse_sets(args.overrides)
-    for name, option, value in (("t_end", "--t-end", args.t_end), ("output_interval", "--output-interval",
-                                                                  args.output_interval)):
-        if value is None:
-            continue
-        if name in out and not _same_number(out[name], value):
-            raise InputError(f"{option} {value:g} and --set {name}={out[name]} disagree: keep one")
-        out[name] = repr(value)
-    return out
-
-
-def _same_number(text, value):
-    """Whether the --set ``text`` is the number ``value`` (text that is no number is not)."""
-    try:
-        return float(text) == value
-    except ValueError:
-        return False
+    return with_times(parse_sets(args.overrides), args)
 
 
 def cmd_list():

@@ -7,6 +7,10 @@ import sys
 from .errors import InputError
 
 
+COMPARE_USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [--t-end T] "
+                 "[--output-interval DT] [-n RANKS] [--out DIR] [--colour FIELD]")  # compare.py
+
+
 class Parser(argparse.ArgumentParser):
     """Errors as InputErrors. ``--set`` takes every word up to the next option, so in ``--set dp=0.1
     CASE`` it takes the case too, and argparse would say only that the case is missing: the error
@@ -38,6 +42,34 @@ def add_set(parser):
     """The repeatable ``--set NAME=VALUE ...`` option, into ``overrides``."""
     parser.add_argument("--set", dest="overrides", nargs="+", action="extend", default=[],
                         metavar="NAME=VALUE", help="override a case parameter")
+
+
+def add_times(parser):
+    """``--t-end`` and ``--output-interval``, the --set items t_end and output_interval by another name."""
+    parser.add_argument("--t-end", type=float, help="simulated end time [s]")
+    parser.add_argument("--output-interval", type=float, help="simulated time between frames [s]")
+
+
+def with_times(sets, args):
+    """The --set items ``sets`` ({name: text}) with the times of ``add_times`` in ``args``; a time
+    given both ways with two values is refused."""
+    out = dict(sets)
+    for name, option, value in (("t_end", "--t-end", args.t_end), ("output_interval", "--output-interval",
+                                                                  args.output_interval)):
+        if value is None:
+            continue
+        if name in out and not _same_number(out[name], value):
+            raise InputError(f"{option} {value:g} and --set {name}={out[name]} disagree: keep one")
+        out[name] = repr(value)
+    return out
+
+
+def _same_number(text, value):
+    """Whether the --set ``text`` is the number ``value`` (text that is no number is not)."""
+    try:
+        return float(text) == value
+    except ValueError:
+        return False
 
 
 def parse_sets(items):

@@ -1,6 +1,7 @@
-"""``python -m mpisph compare CASE --stabiliser none,tvf,utvf [--set NAME=VALUE ...] [-n RANKS]
-[--out DIR] [--colour FIELD]``: the case once per stabiliser, side by side; a run may combine
-remedies, as ``--stabiliser utvf,artificial_stress+utvf`` (stabilisers/__init__.py).
+"""``python -m mpisph compare CASE --stabiliser none,tvf,utvf [--set NAME=VALUE ...] [--t-end T]
+[--output-interval DT] [-n RANKS] [--out DIR] [--colour FIELD]``: the case once per stabiliser, side
+by side (the times as in a run, or as --set t_end and output_interval); a run may combine remedies,
+as ``--stabiliser utvf,artificial_stress+utvf`` (stabilisers/__init__.py).
 
 Each run goes to OUT/<stabiliser>/ (OUT defaults to runs/compare_CASE) under ``mpirun -n RANKS``;
 OUT/compare.md gets a table with, for each, how the run ended and, from its last frame and its
@@ -35,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from . import pairing
-from .arguments import Parser, add_set, parse_sets
+from .arguments import COMPARE_USAGE, Parser, add_set, add_times, parse_sets, with_times
 from .case import build_case, load_case_module, resolve_params
 from .errors import InputError
 from .instability import tensile_instability
@@ -45,15 +46,14 @@ from .launch import mpirun_mpisph
 from .particles import MOVING
 from .parts import make_parts
 
-USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [-n RANKS] "
-         "[--out DIR] [--colour FIELD]")
 
 
 def parse(argv):
-    p = Parser(prog="mpisph compare", usage=USAGE)
+    p = Parser(prog="mpisph compare", usage=COMPARE_USAGE)
     p.add_argument("case")
     p.add_argument("--stabiliser", required=True, help="stabilisers to compare, separated by commas")
     add_set(p)
+    add_times(p)
     p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run")
     p.add_argument("--out", help="output directory (default runs/compare_CASE)")
     p.add_argument("--colour", default="speed", help="particle field of the picture (default: speed)")
@@ -245,7 +245,7 @@ def pictures(runs, colour, out):
 def main(argv):
     a = parse(argv)
     names = run_names(a.stabiliser)
-    overrides = set_overrides(a.overrides)
+    overrides = with_times(set_overrides(a.overrides), a)
     _, case = check(a.case, names, overrides, a.colour)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute
     case_arg = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case

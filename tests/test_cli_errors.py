@@ -12,6 +12,7 @@ import pytest
 from mpirun import mpisph, stderr_lines
 
 from mpisph.__main__ import main as mpisph_main
+from mpisph.arguments import with_times
 from mpisph.io.frames import read_frame
 from mpisph.launch import ROOT
 
@@ -392,3 +393,13 @@ def test_help_of_a_word_command_is_its_usage_not_a_missing_file(word, usage, cap
     r = in_process([word, "--help"], capsys)
     assert r.returncode == 0 and r.stderr == "" and r.stdout.startswith(f"usage: {usage}")
     assert len(r.stdout.strip().splitlines()) == 3  # the usage, a blank line, what it does
+
+
+def test_compare_takes_the_times_as_a_run_does(capsys):
+    """--t-end and --output-interval are the --set times by another name, in compare as in a run."""
+    from mpisph import compare
+    a = compare.parse(["elliptical_drop", "--stabiliser", "none", "--t-end", "0.002", "--output-interval", "0.001"])
+    assert with_times(compare.set_overrides(a.overrides), a) == {"t_end": "0.002", "output_interval": "0.001"}
+    r = in_process(["compare", "elliptical_drop", "--stabiliser", "none", "--set", "t_end=0.1", "--t-end", "0.2"],
+                   capsys)
+    assert_clean_error(r, "--t-end 0.2 and --set t_end=0.1 disagree")
