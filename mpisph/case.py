@@ -28,6 +28,7 @@ from .stabilisers.shifting import COEFFICIENT
 from .stabilisers.transport_velocity import EDGE_NEIGHBOURS, NEAR_SURFACE_NORMALS, SPLASHED
 
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+KIND_WORDS = {float: "a number", int: "a whole number", bool: "true or false", str: "a word"}  # in errors
 
 
 @dataclass(frozen=True)
@@ -65,14 +66,14 @@ class Param:
             else:
                 value = kind(text)
         except ValueError:
-            raise InputError(f"parameter {name} takes a {kind.__name__}, not {text!r}") from None
+            raise InputError(f"parameter {name} takes {KIND_WORDS.get(kind, kind.__name__)}, not {text!r}") from None
         return self.check(name, value)
 
     def check(self, name, value):
         if self.type is float and isinstance(value, int) and not isinstance(value, bool):
             value = float(value)
         if not isinstance(value, self.type):
-            raise InputError(f"parameter {name} takes a {self.type.__name__}, not {value!r}")
+            raise InputError(f"parameter {name} takes {KIND_WORDS.get(self.type, self.type.__name__)}, not {value!r}")
         if self.choices and value not in self.choices:
             parts = value.split(SEPARATOR) if self.stabilisers else ()
             if not parts or "none" in parts or any(part not in self.choices for part in parts):

@@ -438,7 +438,7 @@ RUNNERS = {"cube_failure_3d": cube_failure_3d, "cube_band_start": cube_band_star
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
-    ap.add_argument("--only", nargs="*", choices=list(RUNNERS))
+    ap.add_argument("--only", nargs="+", choices=list(RUNNERS), help="these sections (default: all)")
     ap.add_argument("--reuse", action="store_true",
                     help="measure the runs in runs/production/ of the same command, rank count and committed "
                          "code (their stamp), run the others")

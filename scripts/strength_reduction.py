@@ -37,7 +37,8 @@ def launcher(out, ranks):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     ap.add_argument("case")
     ap.add_argument("--set", dest="sets", nargs="+", action="extend", default=[], metavar="NAME=VALUE")
     ap.add_argument("--factors", type=float, nargs="+", default=[], help="F of each stage, rising (not with --report)")

@@ -45,7 +45,7 @@ VALIDATIONS = {"elliptical_drop": fluids.elliptical_drop, "elliptical_drop_remed
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ranks", type=int, default=2)
-    ap.add_argument("--only", nargs="*", choices=list(VALIDATIONS))
+    ap.add_argument("--only", nargs="+", choices=list(VALIDATIONS), help="these sections (default: all)")
     ap.add_argument("--beam-h-over-dp", type=int, default=30,
                     help="resolution of the beam period runs (the paper's Table 1: 30)")
     ap.add_argument("--beam-v-f", type=float, nargs="*", default=list(references.BEAM_TABLE_1_V_F),

@@ -142,7 +142,7 @@ def test_documented_command_parses(where):
 @pytest.mark.parametrize("argv, why", [
     (["lube_collapse_2d", "--set", "a_ratio=1"], "unknown parameter"),
     (["lube_collapse_3d", "--set", "I0=0.05"], "unknown parameter"),
-    (["inclined_plane", "--set", "H=deep"], "takes a float"),
+    (["inclined_plane", "--set", "H=deep"], "takes a number"),
     (["lube_collapse_2d", "--set", "viscous_step=implicit|semi"], "must be one of"),
     (["compare", "vertical_cut", "--stabiliser", "none,utvf,tvd"], "must be one of"),
     (["compare", "vertical_cut", "--stabiliser", "none", "--set", "stabiliser=utvf"], "chosen by --stabiliser"),
