@@ -128,7 +128,7 @@ SHIFTING_PARAMS = {
 }
 
 COMBINATION_DOC = (f"; several joined by {SEPARATOR}, as artificial_stress{SEPARATOR}utvf, apply in that order, "
-                   "at most one of them a position shift (tvf, tvf_limited, utvf, shifting)")
+                   "at most one of them a position shift (a transport-velocity correction or shifting)")
 
 # Every case that offers the stabiliser ``artificial_stress`` exposes this.
 ARTIFICIAL_STRESS_PARAMS = {

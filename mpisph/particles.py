@@ -60,8 +60,8 @@ CORE_FIELDS = (
     Field("kind", (), np.int8, "0 moving, 1 no-slip wall, 2 free-slip wall, 3 clamped"),
     Field("x", ("dim",), np.float64, "position [m]"),
     Field("v", ("dim",), np.float64, "velocity (wall: wall velocity) [m/s]"),
-    Field("mass", (), np.float64, "mass [kg]"),
-    Field("rho", (), np.float64, "density [kg/m^d]"),
+    Field("mass", (), np.float64, "mass [kg; in 2D per metre of depth, kg/m]"),
+    Field("rho", (), np.float64, "density [kg/m^3]"),
     Field("p", (), np.float64, "pressure [Pa]"),
     Field("normal", ("dim",), np.float64, "unit wall normal into the material (walls only) [-]"),
 )

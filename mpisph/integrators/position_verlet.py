@@ -26,7 +26,7 @@ class PositionVerlet:
     """One time step of a scheme and its force terms (module docstring)."""
 
     name = "position_verlet"
-    fields = (Field("drho_dt", (), np.float64, "density rate [kg/m^d/s]"),)
+    fields = (Field("drho_dt", (), np.float64, "density rate [kg/m^3/s]"),)
     takes_implicit = False  # calls Scheme.implicit_kick
 
     def __init__(self, scheme, forces):
