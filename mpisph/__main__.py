@@ -23,7 +23,8 @@ WORD_COMMANDS = {  # the commands that take plain words: their usage and what th
                "pair); for a solid or a soil also the share of paired particles since its run's first frame."),
     "plot": ("python -m mpisph plot OUT_DIR [PNG]",
              "Draws the last frame of the run in OUT_DIR (particles by plastic strain, or by speed, the walls "
-             "and the initial outline) into PNG (default OUT_DIR/deposit.png) and prints its path."),
+             "and the initial outline) into PNG (default OUT_DIR/deposit.png) and prints its path, and a "
+             "warning for each frame file it left out as incomplete."),
 }
 
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
@@ -129,8 +130,11 @@ def cmd_report(paths):
 
 def cmd_plot(out_dir, png_path=None):
     """PNG of the last frame of a run: particles by plastic strain (or speed), walls, initial outline."""
+    from .io.frames import incomplete_frames
     from .plots import deposit_png
     print(f"wrote {deposit_png(out_dir, png_path)}")
+    for path, why in incomplete_frames(out_dir).items():
+        print(f"mpisph: warning: left out {path} ({why})", file=sys.stderr)
 
 
 def _prepare_out_dir(comm, path, start, interval, keep_later=False, restart_frame=None):

@@ -101,7 +101,7 @@ def check_colour(module, stabilisers, overrides, colour):
         fields = {f.name for f in make_parts(build_case(module, values), values).frame_fields}
         if colour not in fields:
             raise InputError(f"--colour {colour}: the frames with {name} have no such field "
-                             f"(they hold speed, {', '.join(sorted(fields))})")
+                             f"(they hold {', '.join(sorted(fields | {'speed'}))})")
 
 
 def check(case_name, stabilisers, overrides, colour):

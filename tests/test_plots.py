@@ -104,6 +104,18 @@ def test_cli_plot(tmp_path):
     assert_png(tmp_path / "other.png")
 
 
+def test_cli_plot_names_a_frame_file_it_left_out(tmp_path):
+    """A last frame cut short (a run killed while writing it) is not drawn, and plot says so."""
+    run = fake_run(tmp_path / "run")
+    cut = frame_path(str(run), 2)
+    with open(frame_path(str(run), 1), "rb") as f, open(cut, "wb") as g:
+        g.write(f.read(3000))
+    result = mpisph(["plot", run], timeout=120)
+    assert result.returncode == 0, result.stderr
+    lines = stderr_lines(result.stderr)
+    assert len(lines) == 1 and lines[0].startswith(f"mpisph: warning: left out {cut} (") and "truncated" in lines[0]
+
+
 @pytest.mark.parametrize("args, fragment", [
     (["plot"], "usage: python -m mpisph plot OUT_DIR [PNG]"),
     (["plot", "a", "b", "c"], "usage: python -m mpisph plot OUT_DIR [PNG]"),

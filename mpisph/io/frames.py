@@ -317,6 +317,12 @@ def list_frames(out_dir):
     return [p for k, p in sorted((k, p) for k, p in keyed if k is not None)]
 
 
+def incomplete_frames(out_dir):
+    """{path: why} of the files of ``out_dir`` named as frames that are no complete frame (a write
+    cut short, another file), which ``list_frames`` leaves out."""
+    return {p: why for p in sorted(_frame_files(out_dir)) if (why := _inspect(p))}
+
+
 def frames_after(out_dir, time):
     """The complete frames of ``out_dir`` stored after ``time``."""
     return [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
