@@ -47,7 +47,6 @@ from .particles import MOVING
 from .parts import make_parts
 
 
-
 def parse(argv):
     p = Parser(prog="mpisph compare", usage=COMPARE_USAGE)
     p.add_argument("case")
