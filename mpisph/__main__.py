@@ -42,7 +42,8 @@ def _parser():
     add_set(p)
     add_times(p)
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
-                   "a run replaces the frames an earlier run wrote there after its start")
+                   "a run replaces the frames an earlier run wrote there after its start (with a warning when they "
+                   "are another case's)")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
     p.add_argument("--quiet", action="store_true",
                    help="print neither the opening, progress nor closing lines (warnings and errors still print)")
@@ -137,17 +138,19 @@ def cmd_plot(out_dir, png_path=None):
         print(f"mpisph: warning: left out {path} ({why})", file=sys.stderr)
 
 
-def _prepare_out_dir(comm, path, start, interval, keep_later=False, restart_frame=None):
+def _prepare_out_dir(comm, path, start, values, keep_later=False, restart_frame=None):
     """Create the output directory on rank 0, check it can be written, and delete the frames an
-    earlier run wrote there after ``start``, the time this run starts from (-inf from the start);
-    with ``keep_later`` (a restart into its frame's directory that no --out named) refuse instead
-    when there are such frames. Frames are numbered by t / ``interval``: refuse a run whose frames
-    would write over a frame it keeps (stored up to ``start``), but ``restart_frame``, the frame a
-    restart with its own run's output interval goes on from, which that run would also replace
-    (a frame that a signal or the end time put between two output times)."""
-    from .io.frames import (drop_frames_after, frame_path, frame_time, frames_after,
+    earlier run wrote there after ``start``, the time this run (its parameters ``values``) starts
+    from (-inf from the start), with a warning when they are another case's; with ``keep_later`` (a
+    restart into its frame's directory that no --out named) refuse instead when there are such
+    frames. Frames are numbered by t / output_interval: refuse a run whose frames would write over a
+    frame it keeps (stored up to ``start``), but ``restart_frame``, the frame a restart with its own
+    run's output interval goes on from, which that run would also replace (a frame that a signal or
+    the end time put between two output times)."""
+    from .io.frames import (drop_frames_after, frame_cases, frame_path, frame_time, frames_after,
                             frames_kept_and_numbered_from, regular_frame_number)
 
+    interval = values["output_interval"]
     problem = None
     if comm.rank == 0:
         later = frames_after(path, start) if keep_later else []
@@ -167,6 +170,12 @@ def _prepare_out_dir(comm, path, start, interval, keep_later=False, restart_fram
                 os.makedirs(path, exist_ok=True)
                 with tempfile.NamedTemporaryFile(dir=path):
                     pass
+                others = {case: n for case, n in frame_cases(path).items()
+                          if case != values["case"]} if start == -float("inf") else {}
+                if others:
+                    held = ", ".join(f"{n} of case {case}" for case, n in sorted(others.items(), key=str))
+                    print(f"mpisph: warning: {path} held frames ({held}), which this run of "
+                          f"{values['case']} replaces", file=sys.stderr, flush=True)
                 drop_frames_after(path, start)
             except OSError as e:
                 problem = f"cannot write output directory {path!r}: {e.strerror or e}"
@@ -252,7 +261,7 @@ def run(args, comm):
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
     own_interval = restarted and values["output_interval"] == written["output_interval"]
-    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), values["output_interval"],
+    _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), values,
                      keep_later=restarted and not args.out, restart_frame=args.restart if own_interval else None)
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
                                                                   wall_force_columns(case), barrier_load_columns(case)),

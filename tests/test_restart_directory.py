@@ -81,3 +81,17 @@ def test_a_restart_that_would_renumber_the_frames_it_keeps_is_refused(stopped, t
     assert r.returncode == 0, r.stderr
     assert times(stopped) == pytest.approx([0.0, 0.01, 0.02, 0.025, 0.03])
     assert [os.path.basename(f) for f in list_frames(stopped)][-2:] == ["frame_00005.hdf", "frame_00006.hdf"]
+
+
+def test_a_run_that_replaces_another_cases_frames_says_so(stopped, tmp_path):
+    """A new run into a directory of another case's run replaces its frames, as documented, with a
+    warning that names them; the same case run again there replaces its own without one."""
+    r = mpisph("taylor_green", "--set", "nx=10", "--t-end", "0.01", "--output-interval", "0.01", "--quiet",
+               "--out", "run", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert stderr_lines(r.stderr) == [f"mpisph: warning: run held frames (3 of case dam_break_2d), which this run "
+                                      "of taylor_green replaces"]
+    assert times(stopped) == pytest.approx([0.0, 0.01])
+    r = mpisph("taylor_green", "--set", "nx=10", "--t-end", "0.01", "--output-interval", "0.01", "--quiet",
+               "--out", "run", cwd=tmp_path)
+    assert r.returncode == 0 and stderr_lines(r.stderr) == [], r.stderr

@@ -323,6 +323,17 @@ def incomplete_frames(out_dir):
     return {p: why for p in sorted(_frame_files(out_dir)) if (why := _inspect(p))}
 
 
+def frame_cases(out_dir):
+    """{case: how many of its complete frames} in ``out_dir``, from the frames' attributes alone."""
+    cases = {}
+    for p in _frame_files(out_dir):
+        if not _inspect(p):
+            with _open(p) as f:
+                case = json.loads(f["mpisph"].attrs["params"]).get("case")
+            cases[case] = cases.get(case, 0) + 1
+    return cases
+
+
 def frames_after(out_dir, time):
     """The complete frames of ``out_dir`` stored after ``time``."""
     return [p for p in _frame_files(out_dir) if (_time_key(p) or (-np.inf,))[0] > time]
