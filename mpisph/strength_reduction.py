@@ -140,6 +140,17 @@ def bracket(stages):
     return stood, min(slid, default=None)
 
 
+def release_creep(stages):
+    """How fast the release still moved at its end: the 99 % displacement over its second half (from
+    its first frame at or after half its time, so that the ringing of the settling averages out) over
+    the height H, per second. A stage that moves SLIDE H slid, so a release still creeping at SLIDE /
+    stage or more had not settled: the first stage after it would slide at any factor."""
+    frames = [read_frame(f) for f in list_frames(stages[0].directory)]
+    last = frames[-1]
+    before = next(f for f in frames if f["t"] >= 0.5 * (frames[0]["t"] + last["t"]) - 1e-9)
+    return displacement_percentile(before, last) / cut_height(frames[0]) / (last["t"] - before["t"])
+
+
 def release_frame(stages):
     """The first frame of the release, the first of the Stages."""
     return read_frame(list_frames(stages[0].directory)[0])

@@ -14,7 +14,9 @@ first line also gives the factors at which limit analysis puts a vertical cut of
 (references.vertical_cut_safety_factor). ``--hold S`` runs the last factor that stood on for S seconds
 more, after the search or, without ``--factors``, on the search recorded in DIR: a factor whose stage
 gives way there counts as slid. ``--report`` prints the stages already recorded in DIR. Both read
-the record with the case and --set items of its search, which they check against its release.
+the record with the case and --set items of its search, which they check against its release. A
+warning follows the table when the release still crept at its end fast enough to pass the slide's
+share within a stage (strength_reduction.release_creep): a longer --settle is then needed.
 """
 
 import argparse
@@ -87,6 +89,12 @@ def main():
           f"analysis puts a vertical cut of this height critical at F = {associated:.3f} (associated) and "
           f"{dilatant:.3f} (psi = {soil['psi']:g}, Drescher & Detournay)")
     print("\n".join(strength_reduction.table(stages, soil)))
+    stage = stages[1].end - stages[1].start if len(stages) > 1 else a.stage
+    creep = strength_reduction.release_creep(stages)
+    if creep * stage >= strength_reduction.SLIDE:
+        print(f"warning: the release still moved {creep:.3g} H/s at its end, which over a stage of {stage:g} s "
+              f"passes the slide's {strength_reduction.SLIDE:g} H: it had not settled, so the stages after it "
+              "may read its own motion as a slide; give a longer --settle")
     stood, slid = strength_reduction.bracket(stages)
     print(f"factor of safety: {stood:g} to {slid:g}" if stood is not None and slid is not None else
           f"no stage slid: the factor of safety is above {stood:g}" if slid is None else

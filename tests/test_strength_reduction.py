@@ -75,6 +75,20 @@ def test_a_stage_that_moves_the_body_beyond_the_slide_share_slid_and_the_release
     assert rows[4].startswith(f"| 1.1 | {5 / 1.1:.3f} |") and rows[4].endswith("| 0.0300 | 0.040 | slid |")
 
 
+def test_the_release_creep_is_its_second_halfs_displacement_per_second(tmp_path):
+    """A release to 2 s whose block moves 0.008 H from 1 s to its end creeps at 0.008 H/s, whatever it
+    did before (0.5 H by 0.5 s) or in between (a swing at 1.5 s): under SLIDE over a stage of 1 s,
+    past it over 2 s."""
+    release = tmp_path / "release"
+    release.mkdir()
+    for index, (t, shift) in enumerate(((0.0, 0.0), (0.5, 0.5), (1.0, 0.6), (1.5, 0.65), (2.0, 0.608))):
+        write_block(release, index, t, shift)
+    stages = [strength_reduction.Stage(0.6, str(release), 0.0, 2.0, 1.0, 0.1, 0.1, 0.6, 0.6, "settling")]
+    creep = strength_reduction.release_creep(stages)
+    assert creep == pytest.approx(0.008, rel=1e-9)
+    assert creep * 1.0 < strength_reduction.SLIDE < creep * 2.0
+
+
 def hand_built_launch(tmp_path, safety_factor, launched):
     """A ``launch`` that writes a stage's frames by hand: the block creeps 0.001 H per stage at a
     factor below ``safety_factor`` and slides 0.03 H above it; each stage's factor (from its reduced
