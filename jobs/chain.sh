@@ -9,7 +9,8 @@
 #                            job, with the mpisph arguments ARGS (CASE --restart FRAME), through run
 # sets JOB_ID (the batch system's job id) and, where the batch system sends no signal before the
 # walltime, SIGNAL_AFTER (seconds after the start when this shell sends itself SIGUSR1); and may set (environment, or the submission's -v/--export):
-#   OUT               output directory (default runs/CASE-JOB_ID; a follow-up job keeps it)
+#   OUT               output directory (default runs/CASE-JOB_ID, CASE a case file's name without .py;
+#                     a follow-up job keeps it)
 #   NUMBA_CACHE_DIR   compiled kernels (default node-local: $TMPDIR or /tmp, per user)
 #   WARMUP_ARGS       arguments of the warm-up run (default --t-end 1e-9: one step of the case at
 #                     its default, workstation size, compiling the kernels of its default options;
@@ -19,8 +20,9 @@
 set -euo pipefail
 
 PY="${PY:-.venv/bin/python}"
-CASE="$1"; shift
-OUT="${OUT:-runs/${CASE}-${JOB_ID}}"
+CASE="${1:?usage: the job script takes the CASE (a name, or a case file) first}"; shift
+case_name="$(basename "$CASE" .py)"  # a case file runs into runs/ its name, as python -m mpisph does
+OUT="${OUT:-runs/${case_name}-${JOB_ID}}"
 CHAIN_INDEX="${CHAIN_INDEX:-1}"
 CHAIN_MAX="${CHAIN_MAX:-20}"
 export NUMBA_CACHE_DIR="${NUMBA_CACHE_DIR:-${TMPDIR:-/tmp}/mpisph-numba-${USER:-$(id -un)}}"

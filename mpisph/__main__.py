@@ -12,6 +12,7 @@ import sys
 import tempfile
 import time
 import traceback
+from pathlib import Path
 
 from .arguments import COMPARE_USAGE, Parser, add_set, add_times, parse_sets, with_times
 from .errors import BlowUp, InputError, Stopped
@@ -255,7 +256,7 @@ def run(args, comm):
     restarted = bool(args.restart)
     # a restart continues in its frame's directory unless told otherwise (the frame's own, through links)
     out_dir = args.out or (os.path.dirname(os.path.realpath(args.restart)) if restarted
-                           else os.path.join("runs", args.case))
+                           else os.path.join("runs", Path(args.case).stem))  # a case file: runs/ its name
     progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,

@@ -95,3 +95,15 @@ def test_a_run_that_replaces_another_cases_frames_says_so(stopped, tmp_path):
     r = mpisph("taylor_green", "--set", "nx=10", "--t-end", "0.01", "--output-interval", "0.01", "--quiet",
                "--out", "run", cwd=tmp_path)
     assert r.returncode == 0 and stderr_lines(r.stderr) == [], r.stderr
+
+
+def test_a_case_file_runs_into_runs_and_its_name(tmp_path):
+    """A case given by its path, absolute or not, writes to runs/NAME (NAME its file's name without
+    .py) unless --out says otherwise, as a shipped case writes to runs/CASE."""
+    own = tmp_path / "cases" / "my_vortex.py"
+    own.parent.mkdir()
+    own.write_text((ROOT / "cases" / "taylor_green.py").read_text())
+    for given in (own, own.relative_to(tmp_path)):
+        r = mpisph(given, "--set", "nx=10", "--t-end", "0.01", "--output-interval", "0.01", "--quiet", cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        assert times(tmp_path / "runs" / "my_vortex") == pytest.approx([0.0, 0.01])
