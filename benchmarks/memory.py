@@ -16,6 +16,7 @@ resident set at the end of the step loop, every array still alive, after
 themselves take.
 """
 
+import argparse
 import subprocess
 import sys
 import tempfile
@@ -84,4 +85,5 @@ def main():
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no other argument
     main()

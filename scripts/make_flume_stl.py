@@ -19,7 +19,7 @@ shipped files match. ``python scripts/make_flume_stl.py DIR NAME=VALUE ...`` wri
 example ``SOIL_DEPTH=1.2``) into DIR, for ``python -m mpisph flume_3d --set geometry=DIR``.
 """
 
-import sys
+import argparse
 from pathlib import Path
 
 import meshio
@@ -186,12 +186,20 @@ def sketch(png):
 
 
 if __name__ == "__main__":
-    for arg in sys.argv[2:]:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir", nargs="?", type=Path, default=OUT, help="where to write them (default: cases/flume/)")
+    ap.add_argument("dimensions", nargs="*", metavar="NAME=VALUE",
+                    help="a dimension of this file in metres or degrees, e.g. SOIL_DEPTH=1.2")
+    a = ap.parse_args()
+    for arg in a.dimensions:
         name, _, value = arg.partition("=")
         if name not in globals() or not isinstance(globals()[name], float):
-            raise SystemExit(f"unknown dimension {name!r}")
-        globals()[name] = float(value)
-    out = write(Path(sys.argv[1]) if len(sys.argv) > 1 else OUT)
+            ap.error(f"unknown dimension {name!r}")
+        try:
+            globals()[name] = float(value)
+        except ValueError:
+            ap.error(f"{name} takes a number, not {value!r}")
+    out = write(a.dir)
     print(f"wrote the flume's surfaces to {out}")
     if out == OUT:
         print(f"drew {sketch(Path(__file__).resolve().parent.parent / 'docs' / 'img' / 'flume_3d_sketch.png')}")

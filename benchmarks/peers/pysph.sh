@@ -45,6 +45,12 @@
 
 set -euo pipefail
 
+case "${1:-}" in
+    -h|--help) sed -n '2,/^$/{/^$/q;s/^# \{0,1\}//;p}' "$0"; exit 0 ;;  # the comment above
+    "") ;;
+    *) echo "pysph.sh: takes no arguments (settings are environment variables: bash $0 --help)" >&2; exit 2 ;;
+esac
+
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 HERE="$REPO/benchmarks/peers"
 SCRATCH="${MPISPH_BENCH_SCRATCH:-${TMPDIR:-/tmp}/mpisph-bench}"
