@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from mpisph.case import Body, Case, Fluid, Param, Wall, density_reinit_param, fluid_stabiliser_params, limiter_param
+from mpisph.case import (Body, Case, Fluid, Front, Param, Wall, density_reinit_param, fluid_stabiliser_params,
+                         limiter_param)
 from mpisph.geometry import box, box_walls, support_layers
 
 PARAMS = {
@@ -40,4 +41,5 @@ def setup(p):
         density_reinit=p.density_reinit,
         stabilisers=p.stabiliser,
         u_ref=u,
+        front=Front((0.0, 0.0), (0,)),  # the surge front in diagnostics.csv (measure.surge_front adds dp / 2)
     )

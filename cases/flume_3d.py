@@ -102,7 +102,7 @@ def setup(p):
         stabilisers=p.stabiliser,
         density_reinit=p.density_reinit,
         u_ref=float(np.sqrt(2.0 * p.g * (soil_hi[2] - soil_lo[2]))),
-        front=Front(origin=(lo[0], 0.0, 0.0), axes=(0,)),
+        front=Front(origin=(float(slope.origin[0]), 0.0, 0.0), axes=(0,)),  # x from the top corner of the chute floor
         wall_forces={"barrier": (b_lo[0], middle, b_lo[2])},
         barrier_loads=[BarrierLoad("barrier", "approach", "approach_top", width=b_hi[1] - b_lo[1], density=p.rho0,
                                    bed=b_lo[2])],
