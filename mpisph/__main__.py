@@ -99,7 +99,8 @@ def cmd_info(name, overrides):
 def cmd_report(paths):
     """Tensile-instability measure of each frame (see mpisph.instability); for a solid or a soil,
     also the paired share against the first frame of its run's directory (mpisph.pairing); a run
-    restarted into a directory of its own has no frame from t = 0 there, and the line says since when."""
+    restarted into a directory of its own has no frame from t = 0 there, and the line says since when,
+    or that there is none before the frame."""
     from pathlib import Path
 
     from . import pairing
@@ -123,7 +124,8 @@ def cmd_report(paths):
                 firsts[run] = read_frame(list_frames(run)[0])
             first = firsts[run]
             since = f" since its first frame here, t = {first['t']:.6g} s" if first["t"] > 0 else ""
-            paired = f" ({100 * pairing.paired_share(frame, first):.3f}% paired{since})"
+            paired = (f" ({100 * pairing.paired_share(frame, first):.3f}% paired{since})"
+                      if first["t"] < frame["t"] or not since else " (paired share: no earlier frame in its directory)")
         print(f"{path}: t = {frame['t']:.6g} s, {m['n']} particles, clustering {100 * m['clustering']:.3f}%{paired}, "
               f"inner voids {100 * m['inner_voids']:.3f}%, free surface {100 * m['surface']:.2f}%, "
               f"closest pair {m['min_spacing']:.3f} dp, {m['fragments']} fragment{'s' * (m['fragments'] > 1)} "

@@ -117,16 +117,18 @@ def test_report_command_on_a_soil_gives_its_paired_share(tmp_path):
 
 def test_report_on_a_run_restarted_elsewhere_says_since_when_it_measures_pairing(tmp_path):
     """A run restarted into a directory of its own starts its frames after the restart's: the paired
-    share is measured from its first frame there, and the line says so."""
+    share is measured from its first frame there, and the line says so; of that first frame itself
+    the line says there is nothing earlier to measure from."""
     first, restarted = tmp_path / "first", tmp_path / "restarted"
     r = mpirun_mpisph(["cohesive_failure_2d", "--set", "dp=0.1", "--t-end", "0.05", "--output-interval", "0.05",
                        "--out", first, "--quiet"])
     assert r.returncode == 0, r.stderr
-    r = mpirun_mpisph(["cohesive_failure_2d", "--t-end", "0.1", "--output-interval", "0.05",
+    r = mpirun_mpisph(["cohesive_failure_2d", "--t-end", "0.15", "--output-interval", "0.05",
                        "--restart", first / "frame_00001.hdf", "--out", restarted, "--quiet"])
     assert r.returncode == 0, r.stderr
-    r = mpirun_mpisph(["report", first / "frame_00001.hdf", restarted / "frame_00002.hdf"])
+    r = mpirun_mpisph(["report", first / "frame_00001.hdf", restarted / "frame_00003.hdf", restarted / "frame_00002.hdf"])
     assert r.returncode == 0, r.stderr
     lines = r.stdout.splitlines()
     assert "% paired)" in lines[0]  # measured from t = 0
     assert "% paired since its first frame here, t = 0.1 s)" in lines[1]
+    assert "(paired share: no earlier frame in its directory)" in lines[2]
