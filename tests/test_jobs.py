@@ -27,7 +27,8 @@ def _render(script, env, args=()):
 
 @pytest.mark.parametrize("stopped", [False, True])
 def test_slurm_job_lines(stopped):
-    env = {"SLURM_SUBMIT_DIR": str(ROOT), "SLURM_NNODES": "2", "SLURM_NTASKS": "64", "SLURM_JOB_ID": "1234"}
+    env = {"SLURM_SUBMIT_DIR": str(ROOT), "SLURM_NNODES": "2", "SLURM_NTASKS": "64", "SLURM_JOB_ID": "1234",
+           "SLURM_JOB_PARTITION": "long", "SLURM_JOB_ACCOUNT": "geo42"}
     if stopped:
         env["MPISPH_DRY_RUN_LAST_LINE"] = STOPPED
     lines = _render("slurm/mpisph.sbatch", env, ["flume_3d", "--set", "dp=0.02"])
@@ -41,8 +42,8 @@ def test_slurm_job_lines(stopped):
         "+ srun --mpi=pmix .venv/bin/python -m mpisph flume_3d --set dp=0.02 --out runs/flume_3d-1234",
     ]
     if stopped:
-        expected.append("+ sbatch --dependency=afterany:1234 --nodes=2 --ntasks=64 --export=ALL "
-                        "jobs/slurm/mpisph.sbatch flume_3d --restart runs/x/frame_00003.hdf")
+        expected.append("+ sbatch --dependency=afterany:1234 --nodes=2 --ntasks=64 --partition=long --account=geo42 "
+                        "--export=ALL jobs/slurm/mpisph.sbatch flume_3d --restart runs/x/frame_00003.hdf")
     assert commands == expected
     script = (ROOT / "jobs" / "slurm" / "mpisph.sbatch").read_text()
     assert "#SBATCH --signal=B:USR1@120" in script
@@ -61,7 +62,7 @@ def test_pbs_job_lines(tmp_path):
     nodefile = tmp_path / "nodes"
     nodefile.write_text("n1\nn1\nn2\nn2\n")
     env = {"PBS_O_WORKDIR": str(ROOT), "PBS_NODEFILE": str(nodefile), "PBS_JOBID": "99.server", "CASE": "flume_3d",
-           "ARGS": "--set dp=0.02", "WALLTIME_SECONDS": "3600", "SELECT": "2:ncpus=2:mpiprocs=2",
+           "ARGS": "--set dp=0.02", "WALLTIME_SECONDS": "3600", "SELECT": "2:ncpus=2:mpiprocs=2", "PBS_QUEUE": "long",
            "MPISPH_DRY_RUN_LAST_LINE": STOPPED}
     lines = _render("pbs/mpisph.pbs", env)
     commands = [line for line in lines if line.startswith("+ ")]
@@ -70,7 +71,7 @@ def test_pbs_job_lines(tmp_path):
         "--out runs/flume_3d-99/warm-up --quiet",
         "+ mkdir -p runs/flume_3d-99",
         "+ mpirun -np 4 .venv/bin/python -m mpisph flume_3d --set dp=0.02 --out runs/flume_3d-99",
-        "+ qsub -W depend=afterany:99.server -l select=2:ncpus=2:mpiprocs=2 -v CASE=flume_3d,ARGS=--restart "
+        "+ qsub -W depend=afterany:99.server -l select=2:ncpus=2:mpiprocs=2 -q long -v CASE=flume_3d,ARGS=--restart "
         "runs/x/frame_00003.hdf,OUT=runs/flume_3d-99,CHAIN_INDEX=2,CHAIN_MAX=20,SELECT=2:ncpus=2:mpiprocs=2 "
         "jobs/pbs/mpisph.pbs",
     ]
