@@ -92,7 +92,7 @@ def passes(p):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeat", type=int, default=15)
     ap.add_argument("--save", help="write every pass's output to this .npz")
     args = ap.parse_args()

@@ -93,7 +93,7 @@ def remedies(names, repeat):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cases", nargs="*", choices=list(BENCHMARKS), default=list(BENCHMARKS))
     ap.add_argument("--repeat", type=int, default=3, help="runs per rank count; the fastest counts")
     ap.add_argument("--remedies", action="store_true", help="the 2D column with each stabiliser instead")

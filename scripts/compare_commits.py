@@ -146,7 +146,7 @@ def throughput(sha, tree, repeat, cases):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--base", default=BASE, help=f"commit to compare against (default {BASE})")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--only", nargs="*", choices=list(RUNS), default=list(RUNS))
