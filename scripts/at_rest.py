@@ -17,6 +17,7 @@ import numpy as np
 
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.particles import MOVING
+from run_check import run_params  # (this directory)
 
 
 def main():
@@ -25,6 +26,7 @@ def main():
     ap.add_argument("--every", type=int, default=5)
     ap.add_argument("--fastest", type=int, default=10)
     a = ap.parse_args()
+    run_params(ap, a.run, ("rho0",), "runs whose material has a density rho0 (fluids, elastic solids, soils)")
     rows = []  # per frame: t, the moving particles' speeds, rho / rho0 (least, largest, beyond 1.5)
     last = None
     for path in list_frames(a.run):  # one frame in memory at a time; the last two are kept

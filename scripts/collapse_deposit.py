@@ -41,6 +41,7 @@ import numpy as np
 from mpisph import measure, references
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import frame_time, list_frames, read_frame
+from run_check import run_params  # (this directory)
 
 STATIONS = (0.5, 0.75, 1.0, 1.25, 1.5)  # radii / r_0 of the surface profile
 FRACTIONS = (0.9, 0.95, 0.99)  # of the mass, for measure.mass_extent
@@ -166,6 +167,8 @@ def main():
     ap.add_argument("--profile", type=float, metavar="STEP", help="print the surfaces side by side every STEP")
     ap.add_argument("--plot", metavar="PNG", help="draw the surfaces of all the runs into PNG")
     args = ap.parse_args()
+    for run in args.runs:
+        run_params(ap, run, ("a",), "the mu(I) column collapses (lube_collapse_2d, lube_collapse_3d)")
     deposits = []
     for run, at in ((run, at) for run in args.runs for at in (args.at or [None])):
         d = deposit(run, at)

@@ -22,6 +22,7 @@ from mpisph import references
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.meshes import read_surface
+from run_check import run_params  # (this directory)
 
 FLUME = Path(__file__).resolve().parent.parent / "cases" / "flume"
 
@@ -65,6 +66,7 @@ def main():
     ap.add_argument("--gap", type=float, default=0.1, help="distance of the section upstream of the face [m]")
     a = ap.parse_args()
     for run in a.runs:
+        run_params(ap, run, ("geometry", "cohesion", "phi"), "flume_3d runs")
         paths = list_frames(run)
         last = read_frame(paths[-1])
         face, height, ys = barrier_box(last["params"].get("geometry") or FLUME)

@@ -45,6 +45,7 @@ from mpisph.neighbours import neighbour_lists
 from mpisph.physics.mu_i_law import friction
 from mpisph.physics.side_walls import SideWallFriction, add_side_wall_friction, friction_pressure
 from mpisph.physics.viscous_stress import strain_rate
+from run_check import run_params  # (this directory)
 
 
 def per_layer(frames, dp, of_frame):
@@ -237,6 +238,7 @@ def main():
     ap.add_argument("run")
     ap.add_argument("--frames", type=int, default=40, help="the last this many frames are averaged")
     a = ap.parse_args()
+    run_params(ap, a.run, ("theta", "I_0"), "mu(I) inclined planes (inclined_plane)")
     frames = [read_frame(f) for f in list_frames(a.run)[-a.frames:]]
     p = frames[-1]["params"]
     material = case_of_frame(p).material
