@@ -44,6 +44,7 @@ from mpisph.well_posedness import bulk_part, compressible_bulk_friction_bound, c
     dissipation_rate, energy_share, ill_posed_dissipation_share, ill_posed_energy_share, \
     partial_regularisation_alphas, partially_regularised_friction, rate_exponents, solver_bulk_friction, \
     table_1_law, well_posed_window
+from run_check import run_params  # (this directory)
 
 LOW_I = (1e-2, 1e-3, 1e-4)
 GROWTH_I = (0.003, 0.01, 0.03, 0.1)
@@ -162,6 +163,8 @@ def main():
             print(f"| {name} | {I_0:g} | {lo:.3g} < I < {hi:.3g} | {alpha_lo:.3f}-{alpha_hi:.3f} | "
                   + " | ".join(f"{ours:.3f} ({math.degrees(math.atan(ours)):.1f} deg) / {reg:.3f} "
                                f"({math.degrees(math.atan(reg)):.1f} deg)" for ours, reg in mus) + " |")
+    for run in a.runs:
+        run_params(ap, run, ("I_0",), "mu(I) runs")
     for run in a.runs:
         window, rows, overall = run_table(run)
         where = f"well-posed for {window[0]:.3g} < I < {window[1]:.3g}" if window else "ill-posed at every I"
