@@ -251,8 +251,10 @@ class Simulation:
         pa = self.particles
         fields = pa.owned_fields()
         fields.update(self.parts.scheme.derived_fields(pa, pa.n_owned))
+        symmetric = [f.name for f in (*pa.fields, *self.parts.scheme.derived) if f.shape == ("sym",)]
         with self.timer("io"):
             path = frame_path(self.out_dir, self.frame_index)
-            write_frame(path, self.comm, fields, time=self.t, step=self.step, dim=self.case.dim, params=self.params)
+            write_frame(path, self.comm, fields, time=self.t, step=self.step, dim=self.case.dim, params=self.params,
+                        symmetric=symmetric)
             if self.comm.rank == 0:
                 add_to_series(self.out_dir, path, self.t)

@@ -96,7 +96,38 @@ def test_vtkhdf_layout(tmp_path):
         assert vtk["PointData/sigma"].shape == (5, 9)
         assert "Vertices" not in vtk
         assert f["mpisph"].attrs["complete"] == 1
-        assert f["mpisph"].attrs["format_version"] == 3
+        assert f["mpisph"].attrs["format_version"] == 4
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_tensors_are_stored_as_vtk_tensors(tmp_path, dim):
+    """A packed symmetric dim x dim tensor is stored as VTK's 6 components (xx, yy, zz, xy, yz, xz)
+    and a dim x dim tensor as a row-major 3 x 3 one, the z entries 0 in 2D, so that ParaView reads
+    both as tensors; each reads back to its bits."""
+    rng = np.random.default_rng(1)
+    fields = make_fields(dim, n=7, n_walls=0)
+    fields["strain"] = rng.standard_normal((7, dim * (dim + 1) // 2))
+    fields["grad"] = rng.standard_normal((7, dim, dim))
+    path = frame_path(tmp_path, 0)
+    write_frame(str(path), COMM, fields, time=0.5, step=10, dim=dim, params=PARAMS, symmetric=["strain"])
+    with h5py.File(path, "r") as f:
+        strain, grad = f["VTKHDF/PointData/strain"][()], f["VTKHDF/PointData/grad"][()]
+    assert strain.shape == (7, 6) and grad.shape == (7, 9)
+    if dim == 2:
+        np.testing.assert_array_equal(strain[:, [0, 1, 3]], fields["strain"])
+        assert not strain[:, [2, 4, 5]].any()
+        np.testing.assert_array_equal(grad.reshape(7, 3, 3)[:, :2, :2], fields["grad"])
+        assert not grad.reshape(7, 3, 3)[:, 2].any() and not grad.reshape(7, 3, 3)[:, :, 2].any()
+    got = read_frame(path, walls=True)
+    for key, want in expected(fields, True).items():
+        assert got[key].shape == want.shape and got[key].tobytes() == want.tobytes(), key
+    from vtkmodules.vtkIOHDF import vtkHDFReader
+    reader = vtkHDFReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    data = reader.GetOutput().GetPointData()
+    assert data.GetArray("strain").GetNumberOfComponents() == 6
+    assert data.GetArray("grad").GetNumberOfComponents() == 9
 
 
 def test_earlier_format_is_read(tmp_path):

@@ -14,9 +14,13 @@ the reader only by the extension ``.hdf``, which later releases still accept:
 * ``PointData/<name>`` for every field but ``x``: 2-component vectors padded
   to 3, symmetric tensors as their 6 components in VTK's order (xx, yy, zz,
   xy, yz, xz; ParaView reads them as symmetric tensors; format 1 stored
-  (3, 3) stresses flattened to 9, which a restart still reads); the
-  attributes ``mpisph_shape`` and ``mpisph_dtype`` record the original
-  trailing shape and dtype;
+  (3, 3) stresses flattened to 9, which a restart still reads); in 2D a
+  packed symmetric 2 x 2 tensor (xx, yy, xy) goes among those 6 and a 2 x 2
+  tensor into a 3 x 3 one (9 components), their z rows and columns 0, so
+  that ParaView sees a tensor rather than a vector (formats 1-3 stored them
+  as 3 and 4 components); the attributes ``mpisph_shape`` and
+  ``mpisph_dtype`` record the original trailing shape and dtype, and
+  ``mpisph_columns`` which stored columns hold its components;
 * ``FieldData/time`` and ``FieldData/step``.
 
 The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
@@ -42,7 +46,7 @@ FRAME_PREFIX = "frame_"
 FRAME_SUFFIX = ".hdf"
 EARLIER_SUFFIX = ".vtkhdf"  # format versions 1-2
 FORMAT = "mpisph-frame"
-FORMAT_VERSION = 3  # 2: symmetric tensors packed (tensors.py); 3: UnstructuredGrid, .hdf
+FORMAT_VERSION = 4  # 2: symmetric tensors packed (tensors.py); 3: UnstructuredGrid, .hdf; 4: 2D tensors as 3D
 VTKHDF_VERSION = (1, 0)
 VTK_VERTEX = 1
 REQUIRED = ("x", "gid", "kind")
@@ -82,18 +86,39 @@ def _check_fields(comm, fields, dim):
         raise ValueError(f"write_frame: x must have shape (n, {dim})")
 
 
-def _stored(a):
-    """Local array as stored in PointData: bool -> int8, 2 comps -> 3, 2-D."""
+# the stored columns of a 2D field's components among VTK's 3D ones
+SYMMETRIC_2D_COLUMNS = (0, 1, 3)  # xx, yy, xy among xx, yy, zz, xy, yz, xz
+TENSOR_2D_COLUMNS = (0, 1, 3, 4)  # xx, xy, yx, yy of a row-major 3 x 3 tensor
+
+
+def _columns(shape, dim, symmetric):
+    """(stored width, the stored columns holding the flat components) of a field of trailing
+    ``shape``: a 2-component vector padded to 3, in 2D a packed symmetric tensor (``symmetric``)
+    among VTK's 6 components and a 2 x 2 tensor as a 3 x 3 one, anything else as it is."""
+    if dim == 2 and symmetric:
+        return 6, SYMMETRIC_2D_COLUMNS
+    if dim == 2 and shape == (2, 2):
+        return 9, TENSOR_2D_COLUMNS
+    if shape == (2,):
+        return 3, (0, 1)
+    width = int(np.prod(shape))
+    return width, tuple(range(width))
+
+
+def _stored(a, columns=None):
+    """Local array as stored in PointData: bool -> int8, scalars 1-D, the rest 2-D with the
+    field's flat components in the columns ``_columns`` gives and zeros elsewhere."""
     a = np.asarray(a)
     if a.dtype == np.bool_:
         a = a.astype(np.int8)
     if a.ndim == 1:
         return np.ascontiguousarray(a)
     flat = a.reshape(a.shape[0], int(np.prod(a.shape[1:])))
-    if flat.shape[1] != 2:
+    width, cols = columns
+    if cols == tuple(range(flat.shape[1])) and width == flat.shape[1]:
         return np.ascontiguousarray(flat)  # no copy for a contiguous field
-    out = np.zeros((a.shape[0], 3), dtype=a.dtype)
-    out[:, :flat.shape[1]] = flat
+    out = np.zeros((a.shape[0], width), dtype=a.dtype)
+    out[:, cols] = flat
     return out
 
 
@@ -131,13 +156,14 @@ def _write_cells(vtk, comm, n_total, off, n, dxpl):
     _put(vtk.create_dataset("Types", (n_total,), np.uint8), off, np.full(n, VTK_VERTEX, np.uint8), dxpl)
 
 
-def write_frame(path, comm, fields, *, time, step, dim, params):
+def write_frame(path, comm, fields, *, time, step, dim, params, symmetric=()):
     """Write one frame collectively over ``comm``.
 
     ``fields`` maps names to this rank's local arrays (owned particles only,
     possibly zero rows); it must contain ``x`` (n, dim), ``gid`` and
-    ``kind``.  ``time``, ``step``, ``dim`` and ``params`` (JSON-able dict)
-    are taken from rank 0.
+    ``kind``.  ``symmetric`` names the fields that hold a symmetric dim x dim
+    tensor packed (tensors.py, a Field of shape ``("sym",)``).  ``time``,
+    ``step``, ``dim`` and ``params`` (JSON-able dict) are taken from rank 0.
     """
     _check_fields(comm, fields, dim)
     meta = comm.bcast((float(time), int(step), int(dim),
@@ -165,7 +191,7 @@ def write_frame(path, comm, fields, *, time, step, dim, params):
         vtk.attrs["Type"] = np.bytes_("UnstructuredGrid")  # fixed-length ASCII
         _put(vtk.create_dataset("NumberOfPoints", (1,), np.int64), 0,
              [n_total] if root else [], dxpl)
-        points = _stored(fields["x"])  # 2D positions padded to 3 components
+        points = _stored(fields["x"], _columns((dim,), dim, False))  # 2D positions padded to 3
         _put(vtk.create_dataset("Points", (n_total, 3), np.float64), off,
              points, dxpl)
         _write_cells(vtk, comm, n_total, off, n, dxpl)
@@ -175,11 +201,14 @@ def write_frame(path, comm, fields, *, time, step, dim, params):
             if name == "x":
                 continue
             a = np.asarray(a)
-            local = _stored(a)
+            columns = _columns(a.shape[1:], dim, name in symmetric)
+            local = _stored(a, columns)
             d = pdata.create_dataset(name, (n_total,) + local.shape[1:],
                                      local.dtype)
             d.attrs["mpisph_shape"] = json.dumps(list(a.shape[1:]))
             d.attrs["mpisph_dtype"] = a.dtype.str
+            if a.ndim > 1:
+                d.attrs["mpisph_columns"] = json.dumps(list(columns[1]))
             _put(d, off, local, dxpl)
 
         fdata = vtk.create_group("FieldData")
@@ -272,7 +301,8 @@ def read_rows(path, start=0, stop=None):
             shape = tuple(json.loads(d.attrs["mpisph_shape"]))
             a = d[rows]
             if shape:
-                a = a[:, :int(np.prod(shape))].reshape((len(a),) + shape)
+                columns = json.loads(d.attrs.get("mpisph_columns", "null")) or slice(int(np.prod(shape)))
+                a = a[:, columns].reshape((len(a),) + shape)
             out[name] = a.astype(np.dtype(d.attrs["mpisph_dtype"]), copy=False)
         out.update({"t": float(info["time"]), "step": int(info["step"]),
                     "dim": dim, "params": json.loads(info["params"])})
