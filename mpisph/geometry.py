@@ -145,9 +145,12 @@ def bed(lo, hi, dp, layers):
 
 
 class _BoxShell(LatticePoints):
-    """The lattice of ``walls_around`` with each far side's layers (index >= ``counts[a]`` along
-    axis a) moved out by ``excess[a]``, that side's length beyond whole spacings, so that they start
-    dp/2 beyond the far side as the near side's start dp/2 before the near one."""
+    """The lattice of ``walls_around`` fitted to a box whose side along axis a is ``excess[a]``
+    longer than ``counts[a]`` whole spacings: the far side's layers (index >= ``counts[a]``) move
+    out by the excess, so that they start dp/2 beyond the far side as the near side's start dp/2
+    before the near one, and the layers across the side (index 0 .. counts[a] - 1) spread evenly
+    over it, at a spacing (1 + excess / (counts dp)) dp, so that no gap wider than a spacing opens
+    where they meet the far side's."""
 
     def __init__(self, lattice, counts, excess, **kw):
         super().__init__(lattice, **kw)
@@ -158,13 +161,19 @@ class _BoxShell(LatticePoints):
         """Positions of the points with linear indices ``index``."""
         x = self.lattice.points(index)
         tuples = np.unravel_index(np.asarray(index, np.int64), self.lattice.shape)
+        lo = self.lattice.frame.origin
         for a, (t, first) in enumerate(zip(tuples, self.lattice.first)):
-            if self.excess[a] > 0.0:
-                x[:, a] += np.where(t + first >= self.counts[a], self.excess[a], 0.0)
+            e, n = self.excess[a], self.counts[a]
+            if e > 0.0:
+                t = t + first
+                across = (t >= 0) & (t < n)
+                stretched = lo[a] + (x[:, a] - lo[a]) * (1.0 + e / (n * self.lattice.dp))
+                x[:, a] = np.where(t >= n, x[:, a] + e, np.where(across, stretched, x[:, a]))
         return x
 
     def window(self, axis, lo, hi):
-        # a superset: moves are outwards; the points inside the box are never generated
+        # a superset: points move outwards along each axis, by at most the excess; the points inside
+    # the box are never generated
         index = self.lattice.window(axis, lo - self.excess[axis], hi, hollow=[(0, n) for n in self.counts])
         x = self.placed(index)
         inside = (x[:, axis] >= lo) & (x[:, axis] < hi)
@@ -179,9 +188,9 @@ def walls_around(lo, hi, dp, layers, open_sides=()):
 
     ``open_sides`` names sides left without wall, e.g. ``("+y",)`` for an
     open top. Every side's layers start dp/2 behind it, on a side that is not a whole number of
-    spacings too: the far side's are moved out by the excess (``_BoxShell``), so its corner
-    particles stand dp plus the excess from their neighbours along the side. The normal of a wall
-    particle is the unit vector from it to the nearest point of the box.
+    spacings too: the far side's are moved out by the excess and the layers across the side spread
+    over it (``_BoxShell``). The normal of a wall particle is the unit vector from it to the nearest
+    point of the box.
     """
     lo = np.asarray(lo, dtype=float)
     hi = np.asarray(hi, dtype=float)
@@ -194,6 +203,7 @@ def walls_around(lo, hi, dp, layers, open_sides=()):
         a = "xyz".index(side[1])
         if side[0] == "+":
             last[a] = counts[a]
+            excess[a] = 0.0  # no far side's layers to meet: the layers across keep the lattice's spacing
         else:
             first[a] = 0
     lattice = Lattice(tuple(first), tuple(last), dp, Frame(origin=tuple(lo)))

@@ -114,6 +114,27 @@ def test_walls_around_a_box_not_whole_spacings_start_half_a_spacing_behind_every
         assert np.isclose(x[:, a].max(), hi[a] + (layers - 0.5) * dp)
 
 
+@pytest.mark.parametrize("hi", [(1.056, 0.67), (1.03, 0.66, 0.85)])
+def test_walls_around_a_box_not_whole_spacings_leave_no_gap_at_the_far_corners(hi):
+    """Along every row of wall particles, across the box and on round the far corner, neighbours
+    stand between dp and dp (1 + excess / (n dp)) apart: the layers across a side spread over it,
+    where a row stopping a spacing short of the far side's layers left a gap of dp plus the excess
+    (1.56 dp here), through which soil leaked into the floor."""
+    dp, layers = 0.1, 3
+    lo = (0.0,) * len(hi)
+    x, _ = walls_around(lo, hi, dp, layers, open_sides=(f"+{'xyz'[len(hi) - 1]}",)).everything()
+    counts = [int(np.floor(b / dp + 1e-9)) for b in hi]
+    widest = max(1.0 + (b - n * dp) / (n * dp) for b, n in zip(hi, counts)) * dp
+    floor = x[x[:, -1] < 0.0]  # below the box: rows along each other axis
+    for a in range(len(hi) - 1):
+        rest = [b for b in range(len(hi)) if b != a]
+        rows = {}
+        for key, value in zip(map(tuple, np.round(floor[:, rest] / dp, 6)), floor[:, a]):
+            rows.setdefault(key, []).append(value)
+        gaps = np.concatenate([np.diff(np.sort(v)) for v in rows.values()])
+        assert gaps.min() > dp * (1 - 1e-9) and gaps.max() < widest * (1 + 1e-9)
+
+
 def test_a_soil_block_side_that_is_not_whole_spacings_is_warned_and_its_tank_is_not():
     """cube_failure_3d's 5 m floor at dp = 0.08 m is 62.5 spacings: no warning, its walls start dp/2
     outside every side. A 2.1 m cube at 0.08 m is 26.25 spacings: the fill falls short, warned."""
