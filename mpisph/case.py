@@ -296,7 +296,8 @@ class Case:
     scheme_options: dict = field(default_factory=dict)  # the scheme's discretisation options (Scheme.options)
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
     warnings: list = field(default_factory=list)  # one-line warnings printed when a run starts
-    probes: dict = field(default_factory=dict)  # name -> global id (index over the bodies' particles, in order)
+    probes: dict = field(default_factory=dict)  # name -> global id (over the bodies' particles, in order) or a
+    # position, (x, y[, z]): the nearest body particle; recorded in diagnostics.csv as its displacement
     front: Front | None = None  # recorded in diagnostics.csv when given
     gauges: list = field(default_factory=list)  # gauges.Gauge and gauges.SurfaceGauge, a CSV file each
     wall_forces: dict = field(default_factory=dict)  # wall name -> point of its moment; diagnostics (wall_forces.py)
@@ -314,7 +315,9 @@ class Case:
         self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
-        self.probe_origins = {name: self._initial_position(gid) for name, gid in self.probes.items()}
+        probes = {name: self._probe(name, where) for name, where in self.probes.items()}
+        self.probes = {name: gid for name, (gid, _) in probes.items()}
+        self.probe_origins = {name: origin for name, (_, origin) in probes.items()}
         self.wall_gids = {}  # set by validate, from the walls
 
     def _wall_gids(self):
@@ -335,13 +338,47 @@ class Case:
         return out
 
     def _initial_position(self, gid):
-        """Initial position of the moving or clamped particle with global id ``gid``."""
+        """Initial position of the moving or clamped particle with global id ``gid``; None if no
+        body has a particle of that id (a gap of a lattice fill, or beyond the bodies)."""
+        if not 0 <= gid:
+            return None
         for b in self.bodies:
             points = as_points(b.x)
             if gid < points.size:
-                return np.asarray(points.position(gid), float)
+                return np.asarray(points.position(gid), float) if points.holds(gid) else None
             gid -= points.size
-        raise KeyError(gid)
+        return None
+
+    def _nearest_body_particle(self, point):
+        """The global id of the body particle nearest to ``point`` within 2 dp of it; None if none is."""
+        reach, best, first = 2.0 * self.dp, (np.inf, None), 0
+        for b in self.bodies:
+            points = as_points(b.x)
+            index, x, _ = points.window(0, point[0] - reach, point[0] + reach)
+            if len(index):
+                d = np.linalg.norm(x - point, axis=1)
+                k = int(np.argmin(d))
+                best = min(best, (float(d[k]), first + int(index[k])))
+            first += points.size
+        return best[1] if best[0] <= reach else None
+
+    def _probe(self, name, where):
+        """(global id, initial position) of the probe ``name``, given by global id or by a position
+        (the nearest body particle); InputError for an id that is no body particle's."""
+        if np.ndim(where) == 0:
+            gid = int(where)
+            origin = self._initial_position(gid)
+            if origin is None:
+                raise InputError(f"probe {name!r}: global id {gid} is no body particle's (ids run over each body's "
+                                 "lattice, gaps included): give the probe a position instead, as (x, y[, z])")
+            return gid, origin
+        point = np.asarray(where, float)
+        if point.shape != (self.dim,):
+            raise InputError(f"probe {name!r}: a position takes {self.dim} coordinates, not {list(where)}")
+        gid = self._nearest_body_particle(point)
+        if gid is None:
+            raise InputError(f"probe {name!r}: no body particle within 2 dp of {point.tolist()}")
+        return gid, self._initial_position(gid)
 
     def forget_particles(self):
         """Drop the bodies and walls (their arrays, or sources with their caches) once the

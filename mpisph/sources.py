@@ -33,8 +33,12 @@ class Points:
         return x, normal
 
     def position(self, index):
-        """The position of the particle with index ``index``."""
+        """The position of the point with index ``index`` (of a lattice: also where ``keep`` put none)."""
         raise NotImplementedError
+
+    def holds(self, index):
+        """Whether ``index`` is one of its particles' indices."""
+        return 0 <= index < self.size
 
 
 class ArrayPoints(Points):
@@ -80,6 +84,9 @@ class LatticePoints(Points):
 
     def position(self, index):
         return self.lattice.points(np.array([index]))[0]
+
+    def holds(self, index):
+        return 0 <= index < self.size and (self.keep is None or bool(self.keep(self.position(index)[None])[0]))
 
 
 def as_points(x, normal=None):

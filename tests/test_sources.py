@@ -148,3 +148,36 @@ def test_a_soil_block_side_that_is_not_whole_spacings_is_warned_and_its_tank_is_
     assert np.allclose(np.unique(np.round(tank.distance(floor) / 0.08, 9)), [0.5, 1.5, 2.5])
     odd = build_case(module, resolve_params(module, {"dp": "0.08", "edge": "2.1"}))
     assert [w.split(" =")[0] for w in odd.warnings] == [f"the soil cube's {a} side" for a in "xyz"]
+
+def test_probes_by_id_are_checked_and_probes_by_position_take_the_nearest_body_particle():
+    """A probe id in a gap of a lattice fill (where ``keep`` put no particle) or beyond the bodies
+    is refused in one line, where it recorded minus the gap's position as a displacement or ended
+    in a KeyError; a probe given as a position takes the nearest body particle's id."""
+    from mpisph.case import Body, Case
+    from mpisph.errors import InputError
+    from mpisph.materials import Fluid
+    from mpisph.sources import LatticePoints
+
+    dp = 0.1
+    wedge = LatticePoints(Lattice((0, 0), (10, 10), dp, Frame(origin=(0.0, 0.0))),
+                          keep=lambda x: x[:, 0] + x[:, 1] < 1.0)
+    array = ArrayPoints(np.array([[2.05, 0.05], [2.15, 0.05]]))
+
+    def case(probes):
+        return Case(dim=2, domain=((-1.0, -1.0), (3.0, 3.0)), dp=dp, material=Fluid(rho0=1000.0, c0=10.0),
+                    scheme="riemann_fluid", bodies=[Body("wedge", wedge), Body("pair", array)], probes=probes)
+
+    gap = int(np.ravel_multi_index((9, 9), (10, 10)))  # (0.95, 0.95): outside the wedge
+    assert not wedge.holds(gap) and wedge.holds(0)
+    for gid in (gap, 102, -1):
+        with pytest.raises(InputError, match="is no body particle's"):
+            case({"p": gid})
+    made = case({"corner": 0, "second": 101, "near": (0.52, 0.33), "right": (2.16, 0.0)})
+    assert made.probes == {"corner": 0, "second": 101, "near": int(np.ravel_multi_index((5, 3), (10, 10))),
+                           "right": 101}
+    assert np.allclose(made.probe_origins["near"], [0.55, 0.35])
+    assert np.allclose(made.probe_origins["right"], [2.15, 0.05])
+    with pytest.raises(InputError, match="no body particle within 2 dp"):
+        case({"far": (2.0, 2.5)})
+    with pytest.raises(InputError, match="takes 2 coordinates"):
+        case({"flat": (0.1, 0.1, 0.1)})
