@@ -263,6 +263,8 @@ def run(args, comm):
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
+    if not restarted:
+        sim.configure_start()  # refuses overlapping bodies and walls before anything is written
     own_interval = restarted and values["output_interval"] == written["output_interval"]
     _prepare_out_dir(comm, out_dir, t if restarted else -float("inf"), values,
                      keep_later=restarted and not args.out, restart_frame=args.restart if own_interval else None)

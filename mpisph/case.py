@@ -318,6 +318,7 @@ class Case:
         probes = {name: self._probe(name, where) for name, where in self.probes.items()}
         self.probes = {name: gid for name, (gid, _) in probes.items()}
         self.probe_origins = {name: origin for name, (_, origin) in probes.items()}
+        self.id_ranges = []  # set by validate: [(name, (first, last + 1) global id)] of the bodies, then the walls
         self.wall_gids = {}  # set by validate, from the walls
 
     def _wall_gids(self):
@@ -328,14 +329,19 @@ class Case:
         if unknown:
             raise InputError(f"wall_forces names {', '.join(map(repr, unknown))}: the walls are "
                              f"{', '.join(map(repr, names)) or 'none'}")
-        first = sum(as_points(b.x).size for b in self.bodies)
-        out = {}
-        for w in self.walls:
-            size = w.points.size
-            if w.name in self.wall_forces:
-                out[w.name] = (first, first + size)
-            first += size
+        return {name: ids for name, ids in self.id_ranges[len(self.bodies):] if name in self.wall_forces}
+
+    def _id_ranges(self):
+        """[(name, (first, last + 1) global id)] of the bodies, then the walls, in id order."""
+        out, first = [], 0
+        for item, source in zip([*self.bodies, *self.walls], self.sources):
+            out.append((item.name, (first, first + source.size)))
+            first += source.size
         return out
+
+    def name_of(self, gid):
+        """The name of the body or wall that the particle of global id ``gid`` belongs to."""
+        return next(name for name, (first, stop) in self.id_ranges if first <= gid < stop)
 
     def _initial_position(self, gid):
         """Initial position of the moving or clamped particle with global id ``gid``; None if no
@@ -389,6 +395,7 @@ class Case:
     def validate(self, support):
         """Raise InputError for a case that cannot run; note the global ids of the walls whose forces
         are recorded (``wall_gids``)."""
+        self.id_ranges = self._id_ranges()
         self.wall_gids = self._wall_gids()
         check_barrier_loads(self)
         if not self.dp > 0:

@@ -1,7 +1,8 @@
 """The step loop: the order of an advection step, frames and diagnostics.
 
-A run from t = 0 first takes steps 1-7 below on the initial particles, the
-scheme's ``start`` (the state of the initial particles) and frame 0. Then per
+A run from t = 0 first takes steps 1-7 below on the initial particles, refusing
+a body that starts behind a wall's surface or on another particle (overlap.py),
+then the scheme's ``start`` (the state of the initial particles) and frame 0. Then per
 advection step (one neighbour configuration), on every rank:
 
     1. check       stop on a non-finite value, a non-positive density or a particle
@@ -46,8 +47,9 @@ from mpi4py import MPI
 
 from . import surface
 from .blowup import COINCIDENT, PROBLEMS, first_bad_particle, first_coincident_pair
+from .overlap import check_start
 from .context import StepContext
-from .errors import BlowUp, NoConvergence, Stopped
+from .errors import BlowUp, InputError, NoConvergence, Stopped
 from .io.frames import frame_path, regular_frame_number, write_frame
 from .io.series import add_to_series
 from .neighbours import cell_order, neighbour_lists
@@ -92,6 +94,12 @@ class Simulation:
 
     # -- one advection step -------------------------------------------------
 
+    def configure_start(self):
+        """Steps 1-7 on the initial particles, which refuse (InputError, overlap.py) a body that
+        starts behind a wall's surface or on another particle; the surface classes of the first
+        frame. ``run`` takes it unless it was taken before, as __main__ does before it writes anything."""
+        self._configure_geometry()
+
     def _configure(self):
         """Steps 1-11 of the module docstring; the limits [time step, advection step] of 10."""
         ctx = self._configure_geometry()
@@ -127,6 +135,8 @@ class Simulation:
             start, nbr = neighbour_lists(xc, pa.gid, pa.kind, pa.n_owned, self.support, self.case.domain[0],
                                          self.workspace)
             i, j = first_coincident_pair(pa.n_owned, start, nbr, xc)
+        if self.step == 0 and self.advection_steps == 0:  # the particles as the case placed them
+            check_start(self.comm, pa, start, nbr, xc, self.case.dp, (i, j), self.case.name_of)
         self._stop_if_bad(None if i < 0 else (f"particles {int(pa.gid[i])} and {int(pa.gid[j])}",
                                               PROBLEMS[COINCIDENT], np.round(pa.x[i], 6).tolist()))
         self.parts.kernel.bind(pa)
@@ -155,6 +165,8 @@ class Simulation:
         for rank, rep in enumerate(self.comm.allgather(local)):
             if rep is not None:
                 which, what, pos = rep
+                if self.step == 0 and self.advection_steps == 0:
+                    raise InputError(f"the case's initial particles: {what} (rank {rank}, {which}, at {pos})")
                 self._write_unscheduled_frame()
                 raise BlowUp(f"blow-up at step {self.step}, t = {self.t:.6g} s: {what} "
                              f"(rank {rank}, {which}, at {pos}); last frame written")
@@ -181,7 +193,8 @@ class Simulation:
         single = self.parts.criteria.single
         wall0, t0, step0 = wallclock.perf_counter(), self.t, self.step
         if self.step == 0:
-            self._configure_geometry()  # the surface classes of the first frame
+            if self.ctx is None:
+                self.configure_start()
             with self.timer("physics"):
                 self.parts.scheme.start(self.ctx)
             self.write_frame()

@@ -273,19 +273,35 @@ def test_a_case_too_large_for_the_node_is_refused_with_its_count(existing_output
     assert marker.read_bytes() == b"earlier result"
 
 
-def test_two_particles_at_the_same_place_stop_the_run_with_one_line(tmp_path):
-    """Every pair sum divides by the pair's distance: a drop with one particle twice stops at its
-    first configuration, naming both, instead of a ZeroDivisionError from a kernel."""
+def test_two_particles_at_the_same_place_are_refused_before_anything_is_written(existing_output, tmp_path):
+    """Every pair sum divides by the pair's distance: a drop with one particle twice is refused at
+    its first configuration, naming both, instead of a ZeroDivisionError from a kernel (or, as
+    before, a blow-up with a frame written over the directory's earlier results)."""
     src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "elliptical_drop.py")).read()
     old = '    velocity = p.A0 * np.stack'
     assert old in src
     (tmp_path / "drop.py").write_text(src.replace(old, "    x = np.concatenate([x, x[:1]])\n" + old))
-    result = mpisph([tmp_path / "drop.py", *TINY, "--out", tmp_path / "o"], timeout=120)
-    assert result.returncode == 3
-    assert "Traceback" not in result.stderr
-    line = result.stderr.strip().splitlines()[-1]
-    for words in ("blow-up at step 0", "two particles at the same place", "particles 0 and", "last frame written"):
-        assert words in line, line
+    out, marker = existing_output
+    result = mpisph([tmp_path / "drop.py", *TINY, "--out", out], timeout=120)
+    assert result.returncode == 2
+    assert_clean_error(result, "particles 0 of 'drop' and", "start at the same place")
+    assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]
+
+
+@pytest.mark.parametrize("ranks", [1, pytest.param(2, marks=pytest.mark.ranks)])
+def test_a_body_reaching_into_a_wall_is_refused_before_anything_is_written(existing_output, tmp_path, ranks):
+    """The dam break's water (5 x 10 particles at dp = 0.2) moved 1.5 dp down and left, into the
+    tank's floor and side (overlap.py): its bottom row and left column lie behind the walls' surface. It ran on before with those particles
+    inside the wall; now it stops with one line naming body and wall, and on 2 ranks the same line."""
+    src = open(os.path.join(os.path.dirname(__file__), "..", "cases", "dam_break_2d.py")).read()
+    old = '    pressure = p.rho0 * p.g * (H - water[:, 1])'
+    assert old in src
+    (tmp_path / "sunk.py").write_text(src.replace(old, "    water = water - 1.5 * p.dp\n" + old))
+    out, marker = existing_output
+    result = mpisph([tmp_path / "sunk.py", *TINY, "--out", out], ranks=ranks, timeout=120)
+    # the bottom row and the left column (5 + 10 - 1) lie a spacing behind; the next ones on the surface
+    assert_clean_error(result, "14 particles of 'water' start behind the surface of wall 'tank'")
+    assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]
 
 
 def test_a_run_started_by_its_file_restarts_by_its_name(tmp_path):
