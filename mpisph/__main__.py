@@ -263,6 +263,8 @@ def run(args, comm):
     stop = StopOnSignal()
     sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
+    if case.gauges:
+        sim.gauges = GaugeRecorder(case, particles, comm)
     if not restarted:
         sim.configure_start()  # refuses overlapping bodies and walls before anything is written
     own_interval = restarted and values["output_interval"] == written["output_interval"]
@@ -271,9 +273,8 @@ def run(args, comm):
     sim.diagnostics = Diagnostics(out_dir, comm, observable_names(case.dim, parts.scheme, case.probes, case.front,
                                                                   wall_force_columns(case), barrier_load_columns(case)),
                                   append=restarted, restart_time=t if restarted else None)
-    if case.gauges:
-        sim.gauges = GaugeRecorder(case, particles, out_dir, comm, append=restarted,
-                                   restart_time=t if restarted else None)
+    if sim.gauges is not None:
+        sim.gauges.open(out_dir, append=restarted, restart_time=t if restarted else None)
     progress.start(sim)
     wall0, step0 = time.perf_counter(), sim.step
     stopped = None

@@ -18,6 +18,7 @@ import numpy as np
 
 from .barrier_load import check_barrier_loads
 from .errors import InputError
+from .gauges import check_gauges
 from .kernels import KERNELS
 from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
@@ -397,6 +398,7 @@ class Case:
         are recorded (``wall_gids``)."""
         self.id_ranges = self._id_ranges()
         self.wall_gids = self._wall_gids()
+        check_gauges(self)
         check_barrier_loads(self)
         if not self.dp > 0:
             raise InputError(f"spacing dp must be positive, not {self.dp!r}")

@@ -10,7 +10,9 @@ and records the kernel sum S(x) = sum_j W V_j beside them: about 1 inside the ma
 it, 1/2 near a free surface, so a line of points also shows where the material is. The sums run
 over each rank's owned particles and are added over ranks, so a point is sampled whole wherever
 the slabs cut (their last bits depend on the partition, as any global sum does). Where S = 0 the
-fields are written as nan. Vectors are written per component (``v`` -> ``vx``, ``vy``[, ``vz``]).
+fields are written as nan. Vectors are written per component (``v`` -> ``vx``, ``vy``[, ``vz``]),
+tensors too (``stress`` -> ``stress_xx``, ``stress_yy``, ``stress_zz``, ``stress_xy``, ...); the
+points' positions are in ``gauge_<name>_points.csv``.
 A row visits every owned particle once per point, without a cell list: keep gauges to hundreds of
 points, or record them less often (``diagnostics_every``).
 
@@ -19,6 +21,7 @@ the material: the highest moving particle within half a particle spacing of the 
 line, plus dp / 2 (nan where there is none); a maximum over ranks, exact on any rank count.
 """
 
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -102,35 +105,88 @@ def surface_heights(n, kind, x, stations, half_width, out):
                 out[s] = x[j, dim - 1]
 
 
-def _components(name, width, dim):
-    if width == 1:
+VTK_SYMMETRIC = ("xx", "yy", "zz", "xy", "yz", "xz")  # a packed symmetric 3 x 3 tensor (tensors.py)
+
+
+def _columns(field, dim):
+    """The column names of a particle field ``field`` (particles.Field) in ``dim`` dimensions: its
+    name for a scalar, ``vx``, ``vy``[, ``vz``] for a vector, ``stress_xx``, ... for a symmetric
+    tensor packed (xx, yy, xy in 2D; VTK's six in 3D) and for a dim x dim tensor (``_xx``, ``_xy``, ...),
+    else the name with the component's index."""
+    name, shape = field.name, field.shape
+    if shape == ():
         return [name]
-    return [f"{name}{c}" for c in "xyz"[:width]] if width == dim else [f"{name}{c}" for c in range(width)]
+    if shape == ("dim",):
+        return [name + c for c in "xyz"[:dim]]
+    if shape == (6,) or (shape == ("sym",) and dim == 3):
+        return [f"{name}_{c}" for c in VTK_SYMMETRIC]
+    if shape == ("sym",):
+        return [f"{name}_{c}" for c in ("xx", "yy", "xy")]
+    if shape == ("dim", "dim"):
+        return [f"{name}_{a}{b}" for a in "xyz"[:dim] for b in "xyz"[:dim]]
+    return [f"{name}{c}" for c in range(int(np.prod(field.shape_in(dim))))]
+
+
+def check_gauges(case):
+    """Raise InputError for a gauge whose points, or a surface gauge whose stations, do not have
+    the case's number of coordinates (dim; dim - 1 for the stations), or a name given twice."""
+    names = [g.name for g in case.gauges]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise InputError(f"gauge names {', '.join(map(repr, twice))} are given twice: each names a file")
+    for g in case.gauges:
+        where, what, width = ((g.points, "points", case.dim) if isinstance(g, Gauge) else
+                              (g.stations, "stations", case.dim - 1))
+        shape = np.shape(where)
+        if len(shape) != 2 or shape[1] != width or shape[0] == 0:
+            raise InputError(f"gauge {g.name!r}: its {what} take {width} coordinate{'s' * (width > 1)} each in this "
+                             f"{case.dim}D case, an array (n, {width}); it has shape {shape}")
 
 
 class GaugeRecorder:
     """Writes the case's gauges, one CSV each (``Diagnostics`` files: rank 0 writes, a restart
-    continues them)."""
+    continues them), and beside each the positions of its points or stations
+    (``gauge_<name>_points.csv``: a row per point, p0, p1, ... in the order of the columns)."""
 
-    def __init__(self, case, particles, out_dir, comm, append, restart_time):
+    def __init__(self, case, particles, comm):
+        """The columns of every gauge; InputError for a field the particles do not have (before
+        anything is written: ``open`` writes the files)."""
         self.comm = comm
         self.gauges = list(case.gauges)
         self.files = []
+        self.columns = []
         dim = case.dim
+        fields = {f.name: f for f in particles.fields}
         for g in self.gauges:
             if isinstance(g, Gauge):
-                points = np.asarray(g.points, float).reshape(-1, dim)
-                missing = [f for f in g.fields if f not in particles.arrays]
+                missing = [f for f in g.fields if f not in fields]
                 if missing:
-                    raise InputError(f"gauge {g.name!r}: no particle field {', '.join(map(repr, missing))}")
-                widths = [int(np.prod(particles.arrays[f].shape[1:])) for f in g.fields]
-                names = ["t"] + [f"p{i}_{c}" for i in range(len(points))
-                                 for c in ["kernel_sum"] + [n for f, wd in zip(g.fields, widths)
-                                                            for n in _components(f, wd, dim)]]
+                    raise InputError(f"gauge {g.name!r}: no particle field {', '.join(map(repr, missing))}; "
+                                     f"the fields are {', '.join(sorted(fields))}")
+                parts = [c for f in g.fields for c in _columns(fields[f], dim)]
+                self.columns.append(["t"] + [f"p{i}_{c}" for i in range(len(g.points)) for c in ["kernel_sum"] + parts])
             else:
-                names = ["t"] + [f"s{i}_top" for i in range(len(np.asarray(g.stations).reshape(-1, dim - 1)))]
-            self.files.append(Diagnostics(out_dir, comm, names, append, restart_time=restart_time,
+                self.columns.append(["t"] + [f"s{i}_top" for i in range(len(g.stations))])
+
+    def open(self, out_dir, append, restart_time):
+        """Open the gauges' files in ``out_dir`` (continued from ``restart_time`` when ``append``)
+        and write their points' positions."""
+        for g, columns in zip(self.gauges, self.columns):
+            self.files.append(Diagnostics(out_dir, self.comm, columns, append, restart_time=restart_time,
                                           filename=f"gauge_{g.name}.csv"))
+            if self.comm.rank == 0:
+                self._write_points(out_dir, g)
+
+    @staticmethod
+    def _write_points(out_dir, g):
+        if isinstance(g, Gauge):
+            where, prefix, axes = np.asarray(g.points, float), "p", "xyz"
+        else:
+            where, prefix, axes = np.asarray(g.stations, float), "s", "xy"
+        with open(os.path.join(out_dir, f"gauge_{g.name}_points.csv"), "w") as f:
+            f.write(",".join(["point", *axes[:where.shape[1]]]) + "\n")
+            for i, row in enumerate(where):
+                f.write(",".join([f"{prefix}{i}", *(repr(float(c)) for c in row)]) + "\n")
 
     def sample(self, sim):
         """{gauge name: {column: value}} of every gauge for the current state (collective)."""

@@ -419,3 +419,27 @@ def test_compare_takes_the_times_as_a_run_does(capsys):
     r = in_process(["compare", "elliptical_drop", "--stabiliser", "none", "--set", "t_end=0.1", "--t-end", "0.2"],
                    capsys)
     assert_clean_error(r, "--t-end 0.2 and --set t_end=0.1 disagree")
+
+
+GAUGED_TANK = os.path.join(os.path.dirname(__file__), "cases", "gauged_tank.py")
+
+
+@pytest.mark.parametrize("gauge, fragments", [
+    ('Gauge("oops", np.array([[0.1, 0.1, 0.1], [0.2, 0.2, 0.2], [0.3, 0.3, 0.3]]))',
+     ["gauge 'oops': its points take 2 coordinates each in this 2D case", "shape (3, 3)"]),
+    ('SurfaceGauge("tops", np.array([0.1, 0.2]))', ["gauge 'tops': its stations take 1 coordinate each in this 2D case", "shape (2,)"]),
+    ('Gauge("typo", np.array([[0.1, 0.1]]), fields=("stres",))', ["gauge 'typo': no particle field 'stres'"]),
+    ('Gauge("column", np.array([[0.1, 0.1]]))', ["gauge names 'column' are given twice"]),
+])
+def test_a_bad_gauge_is_refused_before_anything_is_written(existing_output, tmp_path, gauge, fragments):
+    """Points of the wrong dimension were reshaped into other points (or a reshape traceback after
+    the first files were written); a field the particles lack stopped only after diagnostics.csv
+    was written. Each is now one line, the directory untouched."""
+    src = open(GAUGED_TANK).read()
+    old = '    case.wall_forces = {"tank": (0.0, 0.0)}'
+    assert old in src
+    (tmp_path / "bad_gauge.py").write_text(src.replace(old, f"    case.gauges.append({gauge})\n" + old))
+    out, marker = existing_output
+    result = mpisph([tmp_path / "bad_gauge.py", *TINY, "--out", out], timeout=120)
+    assert_clean_error(result, *fragments)
+    assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]

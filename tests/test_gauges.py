@@ -26,9 +26,24 @@ def runs(tmp_path_factory):
     """{ranks: (gauge_column.csv, gauge_surface.csv, diagnostics.csv, last frame)} on 1 and 2 ranks."""
     dirs = runs_on(tmp_path_factory, "gauged", CASE, ["--set", "dp=0.025", "--t-end", "0.3", "--output-interval",
                                                       "0.3"])
-    return {n: (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
-                read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1]),
-                read_diagnostics(d / "gauge_grid.csv")) for n, d in dirs.items()}
+    out = {n: (read_diagnostics(d / "gauge_column.csv"), read_diagnostics(d / "gauge_surface.csv"),
+               read_diagnostics(d / "diagnostics.csv"), read_frame(list_frames(d)[-1]),
+               read_diagnostics(d / "gauge_grid.csv")) for n, d in dirs.items()}
+    out["dirs"] = dirs
+    return out
+
+
+def test_each_gauge_writes_its_points_positions(runs):
+    """gauge_<name>_points.csv: a row per point (p0, p1, ...) or station (s0, ...) with its
+    coordinates, so that the columns p<i>_... can be placed without the case file."""
+    column = (runs["dirs"][1] / "gauge_column_points.csv").read_text().splitlines()
+    assert column[0] == "point,x,y"
+    rows = [line.split(",") for line in column[1:]]
+    assert [r[0] for r in rows] == [f"p{i}" for i in range(15)]
+    np.testing.assert_allclose(np.array([r[1:] for r in rows], float),
+                               np.column_stack([np.full(15, 0.5), np.linspace(0.05, 0.75, 15)]), rtol=1e-15)
+    surface = (runs["dirs"][1] / "gauge_surface_points.csv").read_text().splitlines()
+    assert surface == ["point,x", "s0,0.25", "s1,0.5", "s2,0.75"]
 
 
 def test_gauges_sample_still_water(runs):
