@@ -8,6 +8,7 @@ a run after the current step with a frame, a line that says how to restart, and 
 """
 
 import os
+import shlex
 import sys
 import tempfile
 import time
@@ -289,7 +290,8 @@ def run(args, comm):
             sim.gauges.close()
     progress.finish(sim, time.perf_counter() - wall0, step0, ended="stopped" if stopped else "done")
     if stopped and comm.rank == 0:
-        print(f"mpisph: {stopped}; frame {stopped.frame} written; continue with: mpirun -n {comm.size} python -m "
+        print(f"mpisph: {stopped}; frame {stopped.frame} written; continue with: mpirun -n {comm.size} "
+              f"{shlex.quote(sys.executable)} -m "
               f"mpisph {values['case']} --restart {stopped.frame} --out {out_dir}", flush=True)
 
 

@@ -1,4 +1,4 @@
-"""Progress lines on rank 0: step, time, dt, particles, wall time, ETA, throughput."""
+"""Progress lines on rank 0: step, time, time step, particles, wall time, ETA, throughput."""
 
 import sys
 import time as wallclock
@@ -20,6 +20,7 @@ class Progress:
         self.start_bytes = 0
         self.n_total = 0
         self._last = -np.inf
+        self._first = None  # (wall, t, step) at the first progress line
 
     def start(self, sim):
         self.start_bytes = resident_bytes()
@@ -43,10 +44,15 @@ class Progress:
         if not at_frame and now - self._last < PRINT_EVERY:
             return
         self._last = now
-        done = sim.t - t0
-        eta = wall * (sim.params["t_end"] - sim.t) / done if done > 0 else float("nan")
-        rate = self.n_total * (sim.step - step0) / wall if wall > 0 else 0.0
-        self._say(f"step {sim.step:8d}  t {sim.t:.5e} s  dt {sim.dt:.3e} s  N {self.n_total}  "
+        # the pace (ETA, throughput) of the first line is since the start; that of later lines since
+        # the first line, leaving out the numba compile that the first steps take
+        since_wall, since_t, since_step = self._first or (0.0, t0, step0)
+        if self._first is None:
+            self._first = (wall, sim.t, sim.step)
+        spent, done = wall - since_wall, sim.t - since_t
+        eta = spent * (sim.params["t_end"] - sim.t) / done if done > 0 else float("nan")
+        rate = self.n_total * (sim.step - since_step) / spent if spent > 0 else 0.0
+        self._say(f"step {sim.step:8d}  t {sim.t:.5e} s  dt {sim.time_step:.3e} s  N {self.n_total}  "
                   f"wall {wall:8.1f} s  ETA {eta:8.1f} s  {rate:.3e} particle-steps/s"
                   + (f"  frame {sim.frame_index}" if at_frame else ""))
 

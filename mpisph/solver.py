@@ -87,7 +87,8 @@ class Simulation:
         self.frame_index = regular_frame_number(t, params["output_interval"])
         self.advection_steps = 0
         self.rebalances = 0  # new cuts after the first ones (diagnostics.csv)
-        self.dt = 0.0
+        self.dt = 0.0  # the last step taken (cut to an output time at a frame)
+        self.time_step = 0.0  # the last time-step limit, before such a cut (the progress lines')
         self.timer = PhaseTimer()
         self.workspace = Workspace()
         self.ctx = None
@@ -202,6 +203,7 @@ class Simulation:
         first = True
         while self.t < t_end:
             dt, dt_advection = self._configure()
+            self.time_step = dt
             if first and interval < dt:
                 self.progress.warn(f"output_interval = {interval:g} s is shorter than the time step, {dt:.3g} s: "
                                    "each step ends at a frame and is cut to the interval")
@@ -225,7 +227,7 @@ class Simulation:
                 self.dt = dt
                 if last:
                     break
-                dt = self._time_steps()[0]
+                dt = self.time_step = self._time_steps()[0]
                 if not dt > 0.0:  # a limit proportional to the density (the viscous one) went <= 0
                     self._check()
             self.advection_steps += 1
