@@ -153,17 +153,18 @@ def volume(surface):
 
 def fill(surface, dp, frame=None):
     """The lattice points of ``frame`` (spacing dp; default: the world axes from the surface's
-    lowest corner) inside the watertight ``surface``, as a source (sources.py)."""
+    lowest corner) inside the watertight ``surface``, however its faces are oriented, as a source
+    (sources.py)."""
     check_watertight(surface)
     frame = frame or _lowest_corner(surface)
     vertices = frame.local(surface.triangles.reshape(-1, 3))
     lattice = Lattice.covering(vertices.min(axis=0), vertices.max(axis=0), dp, frame)
     triangles = surface.triangles
 
-    def inside(x):
-        return winding_numbers(x, triangles) > 0.5
+    def inside(x):  # |winding number| 1: a surface oriented inwards (-1) fills its inside too
+        return np.abs(winding_numbers(x, triangles)) > 0.5
 
-    return LatticePoints(lattice, keep=inside, estimate=volume(surface) / dp**3)
+    return LatticePoints(lattice, keep=inside, estimate=abs(volume(surface)) / dp**3)
 
 
 @njit(cache=True)

@@ -37,6 +37,11 @@ def test_a_watertight_stl_box_fills_as_the_lattice_box(tmp_path):
     expected = box(lo, hi, dp)
     assert len(x) == len(expected) == 8 * 6 * 5
     assert np.allclose(np.sort(x, axis=0), np.sort(expected, axis=0))
+    # the same box with its faces turned inwards (winding number -1 inside) fills alike, where it
+    # had no particles at all
+    inwards = fill(read_surface(write(tmp_path / "inwards.stl", cube_triangles(lo, hi)[:, ::-1])), dp)
+    assert np.array_equal(inwards.everything()[0], fill(read_surface(tmp_path / "box.stl"), dp).everything()[0])
+    assert abs(inwards.estimate - len(x)) <= 1  # the enclosed volume over dp^3, rounded down
 
 
 def test_an_obj_sphere_fills_its_volume(tmp_path):
