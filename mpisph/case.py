@@ -488,9 +488,19 @@ def resolve_params(module, overrides, base=None):
     return values
 
 
+def angle_warnings(params, values):
+    """A warning for each angle (a parameter in degrees) in (0, pi/2]: a value in radians, likely."""
+    return [f"{name} = {values[name]:g} deg: angles are in degrees ({values[name]:g} rad would be "
+            f"{math.degrees(values[name]):.4g} deg)"
+            for name, p in params.items() if p.unit == "deg" and 0.0 < values.get(name, 0.0) <= math.pi / 2]
+
+
 def build_case(module, values):
-    """Call the case's ``setup`` with the parameter values as attributes."""
-    return module.setup(SimpleNamespace(**values))
+    """Call the case's ``setup`` with the parameter values as attributes; its warnings gain those
+    of ``angle_warnings``."""
+    case = module.setup(SimpleNamespace(**values))
+    case.warnings = [*case.warnings, *angle_warnings(module.PARAMS, values)]
+    return case
 
 
 def case_of_frame(params, module=None):

@@ -181,3 +181,15 @@ def test_probes_by_id_are_checked_and_probes_by_position_take_the_nearest_body_p
         case({"far": (2.0, 2.5)})
     with pytest.raises(InputError, match="takes 2 coordinates"):
         case({"flat": (0.1, 0.1, 0.1)})
+
+
+def test_an_angle_that_looks_like_radians_is_warned():
+    """A friction angle of 0.35 (20 degrees typed in radians) builds, with a warning that says so;
+    0 (a frictionless wall, undrained clay) and the defaults do not."""
+    module = load_case_module("cohesive_failure_2d")
+    case = build_case(module, resolve_params(module, {"dp": "0.2", "phi": "0.35"}))
+    assert [w for w in case.warnings if "angles are in degrees" in w] == [
+        "phi = 0.35 deg: angles are in degrees (0.35 rad would be 20.05 deg)"]
+    for overrides in ({"dp": "0.2"}, {"dp": "0.2", "phi": "0", "psi": "0"}):
+        case = build_case(module, resolve_params(module, overrides))
+        assert not [w for w in case.warnings if "angles are in degrees" in w]
