@@ -20,9 +20,10 @@ from .errors import BlowUp, InputError, Stopped
 
 WORD_COMMANDS = {  # the commands that take plain words: their usage and what they do, which --help prints
     "list": ("python -m mpisph list", "Lists the cases, each with the first paragraph of its description."),
-    "report": ("python -m mpisph report FRAME [FRAME ...]",
+    "report": ("python -m mpisph report FRAME|OUT_DIR [...]",
                "Prints each frame's tensile-instability measures (clustering, inner voids, fragments, closest "
-               "pair); for a solid or a soil also the share of paired particles since its run's first frame."),
+               "pair); for a solid or a soil also the share of paired particles since its run's first frame. "
+               "An OUT_DIR stands for each of its frames, in time order."),
     "plot": ("python -m mpisph plot OUT_DIR [PNG]",
              "Draws the last frame of the run in OUT_DIR (particles by plastic strain, or by speed, the walls "
              "and the initial outline) into PNG (default OUT_DIR/deposit.png) and prints its path, and a "
@@ -98,7 +99,8 @@ def cmd_info(name, overrides):
 
 
 def cmd_report(paths):
-    """Tensile-instability measure of each frame (see mpisph.instability); for a solid or a soil,
+    """Tensile-instability measure of each frame (a directory: each of its frames; see
+    mpisph.instability); for a solid or a soil,
     also the paired share against the first frame of its run's directory (mpisph.pairing); a run
     restarted into a directory of its own has no frame from t = 0 there, and the line says since when,
     or that there is none before the frame."""
@@ -108,8 +110,16 @@ def cmd_report(paths):
     from .case import build_case, load_case_module
     from .instability import tensile_instability
     from .io.frames import check_frame, list_frames, read_frame
+    frames = []
     for path in paths:
-        check_frame(path)
+        if os.path.isdir(path):
+            if not list_frames(path):
+                raise InputError(f"{path} holds no frames")
+            frames += list_frames(path)
+        else:
+            check_frame(path)
+            frames.append(path)
+    paths = frames
     firsts = {}  # the first frame of each run directory, read once
     for path in paths:
         frame = read_frame(path, walls=True)

@@ -113,6 +113,11 @@ def test_report_command_on_a_soil_gives_its_paired_share(tmp_path):
     r = mpirun_mpisph(["report", tmp_path / "frame_00000.hdf", tmp_path / "frame_00002.hdf"])
     assert r.returncode == 0, r.stderr
     assert r.stdout.count("% paired)") == 2 and "clustering 0.000% (0.000% paired)" in r.stdout
+    whole = mpirun_mpisph(["report", tmp_path])  # the directory: each of its frames, in time order
+    assert whole.returncode == 0, whole.stderr
+    lines = whole.stdout.splitlines()
+    assert [line.split(":")[0] for line in lines] == [str(tmp_path / f"frame_0000{i}.hdf") for i in range(3)]
+    assert [lines[0], lines[2]] == r.stdout.splitlines()
 
 
 def test_report_on_a_run_restarted_elsewhere_says_since_when_it_measures_pairing(tmp_path):
