@@ -23,7 +23,7 @@ diagnostics:
 - the runout (last ``front`` minus the first) where the case records a front.
 
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
-runs seen along y) and OUT/compare_energy.png the kinetic and total energy against time. A run
+runs seen along y) on one colour scale and OUT/compare_energy.png the kinetic and total energy against time. A run
 that blows up (status 3) is measured at its last frame; a run that fails otherwise is listed as
 failed, with its error line (its whole standard error is in OUT/<stabiliser>/stderr.txt), and
 compare then exits with status 1 once the others are written. A stabiliser named twice, or a
@@ -45,6 +45,7 @@ from .io.frames import list_frames, read_frame
 from .launch import mpirun_mpisph
 from .particles import MOVING
 from .parts import make_parts
+from .plots import SPEED_LABEL
 
 
 def parse(argv):
@@ -202,26 +203,40 @@ def _field(frame, name):
     return value if value.ndim == 1 else np.linalg.norm(value.reshape(len(value), -1), axis=1)
 
 
+def _label(frames, colour):
+    """The colour bar's label: the speed with its unit, a field by its name (the norm of its
+    components where it has several)."""
+    if colour == "speed":
+        return SPEED_LABEL
+    several = any(np.ndim(f[colour]) > 1 for f in frames.values())
+    return f"|{colour}|, the norm of its components" if several else colour
+
+
 def pictures(runs, colour, out):
     """compare_particles.png and compare_energy.png in ``out`` from {stabiliser: run directory}."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     done = {k: v for k, v in runs.items() if list_frames(os.fspath(v))}
-    fig = Figure(figsize=(4.5 * max(len(done), 1), 4.2), dpi=110)
+    lasts = {name: read_frame(list_frames(os.fspath(run))[-1], walls=True) for name, run in done.items()}
+    values = {name: _field(last, colour) for name, last in lasts.items()}
+    every = np.concatenate([v[np.isfinite(v)] for v in values.values()] or [np.zeros(0)])
+    lo, hi = (float(every.min()), float(every.max())) if len(every) else (0.0, 1.0)
+    fig = Figure(figsize=(4.5 * max(len(done), 1) + 0.8, 4.2), dpi=110)
     FigureCanvasAgg(fig)
-    for k, (name, run) in enumerate(done.items()):
-        last = read_frame(list_frames(os.fspath(run))[-1], walls=True)
+    sc = None
+    for k, (name, last) in enumerate(lasts.items()):
         moving = last["kind"] == MOVING
         x = last["x"]
         axes = (0, x.shape[1] - 1)
         ax = fig.add_subplot(1, len(done), k + 1)
         ax.scatter(x[~moving][:, axes[0]], x[~moving][:, axes[1]], s=0.5, c="0.85", linewidths=0, rasterized=True)
-        sc = ax.scatter(x[moving][:, axes[0]], x[moving][:, axes[1]], s=1.0, c=_field(last, colour), linewidths=0,
-                        rasterized=True)
+        sc = ax.scatter(x[moving][:, axes[0]], x[moving][:, axes[1]], s=1.0, c=values[name], vmin=lo,
+                        vmax=hi if hi > lo else lo + 1.0, linewidths=0, rasterized=True)
         ax.set_aspect("equal")
         ax.set_title(f"{name}, t = {last['t']:.3g} s", fontsize=10)
-        fig.colorbar(sc, ax=ax, shrink=0.8).set_label(colour)
+    if sc is not None:  # one scale for every run, so that their colours compare
+        fig.colorbar(sc, ax=fig.axes, shrink=0.8).set_label(_label(lasts, colour))
     fig.savefig(out / "compare_particles.png", bbox_inches="tight", facecolor="white")
     fig = Figure(figsize=(10, 4), dpi=110)
     FigureCanvasAgg(fig)
