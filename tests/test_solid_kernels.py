@@ -233,3 +233,15 @@ def test_a_free_slip_wall_exerts_no_shear_traction():
         along[name] = acc[0, 0]
     assert abs(along["no-slip"]) > 1.0
     assert abs(along["free-slip"]) < 1e-12 * abs(along["no-slip"])
+
+
+def test_geostatic_stress_under_a_sloping_surface():
+    """``top`` as a function of position: each particle carries the column above it, under a 2 m
+    crest (x < 1) falling at 45 degrees to 1 m (x > 2)."""
+    m = soil()
+    x = np.array([[0.5, 0.5], [1.5, 0.5], [2.5, 0.5]])
+    surface = lambda x: np.clip(3.0 - x[:, 0], 1.0, 2.0)  # noqa: E731
+    sig = geostatic_stress(x, surface, m, 9.8)
+    np.testing.assert_allclose(sig[:, 1, 1], -1850 * 9.8 * np.array([1.5, 1.0, 0.5]))
+    np.testing.assert_allclose(sig[:, 0, 0], m.k0 * sig[:, 1, 1])
+    np.testing.assert_array_equal(geostatic_stress(x[:1], 2.0, m, 9.8), sig[:1])  # level where it is level

@@ -315,16 +315,20 @@ INITIAL_STRESSES = ("geostatic", "none", "inverted")  # the choices of geostatic
 
 
 def geostatic_stress(x, top, soil, g, k_lateral=None, profile="geostatic", base=0.0):
-    """Initial stress (n, 3, 3) at rest under a level surface at height ``top``: sigma_v =
-    -rho0 g (top - y) on the vertical (last) axis, sigma_h = K sigma_v on the others (also out of
-    plane in 2D), K = ``k_lateral`` or, if None, Jaky's 1 - sin phi. Other ``profile``s: "none",
+    """Initial stress (n, 3, 3) at rest under the ground surface at height ``top`` (a number: level
+    ground; or a function of the positions (n, dim) giving the surface's height above each, for a
+    slope: each particle then carries the column of soil above it, which is at rest away from a
+    steep face but not at it): sigma_v = -rho0 g (top - y) on the vertical (last) axis,
+    sigma_h = K sigma_v on the others (also out of plane in 2D), K = ``k_lateral`` or, if None,
+    Jaky's 1 - sin phi. Other ``profile``s: "none",
     no stress (gravity loads the body at t = 0); "inverted", sigma_v = -rho0 g (y - ``base``), zero
     at the base and largest at the top, out of equilibrium: how the authors' SPHinXsys soil cases
     start (stress_yy = -rho0 g y, for example tests/2d_examples/test_2d_cohesive_soil_failure);
     000_ does not print its initial stress."""
     stress = np.zeros((len(x), 3, 3))
     vertical = x.shape[1] - 1
-    depth = {"geostatic": top - x[:, vertical], "none": np.zeros(len(x)), "inverted": x[:, vertical] - base}[profile]
+    surface = top(x) if callable(top) else top
+    depth = {"geostatic": surface - x[:, vertical], "none": np.zeros(len(x)), "inverted": x[:, vertical] - base}[profile]
     sv = -soil.rho0 * g * depth
     k = soil.k0 if k_lateral is None else k_lateral
     for a in range(3):
