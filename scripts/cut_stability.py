@@ -20,6 +20,7 @@ from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.measure import cut_height, displacement_percentile, kinetic_energy_peak
 from mpisph.references import vertical_cut_critical_height
+from run_check import run_params  # (this directory)
 from validation.cuts import verdict
 
 
@@ -31,6 +32,8 @@ def main():
     print("| run | H [m] | H / H_c (associated) | H / H_c (psi) | peak kinetic energy [J] at [s] | "
           + " | ".join(f"99 % displacement / H at {t:g} s" for t in a.at) + " | rho / rho0 at the end | verdict |")
     print("|---" * (7 + len(a.at)) + "|")
+    for run in a.runs:
+        run_params(ap, run, ("cohesion", "phi", "psi", "rho0", "g"), "soil runs (vertical_cut)")
     for run in a.runs:
         paths = list_frames(run)
         first = read_frame(paths[0])

@@ -17,6 +17,7 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from mpisph.io.frames import list_frames, read_frame  # noqa: E402
+from run_check import run_params  # noqa: E402 (this directory)
 
 
 def main():
@@ -27,9 +28,18 @@ def main():
     ap.add_argument("--vmax", type=float, default=1.0)
     ap.add_argument("--xlim", type=float, nargs=2)
     a = ap.parse_args()
-    fig, axes = plt.subplots(len(a.runs), 1, figsize=(8, 2.3 * len(a.runs)), squeeze=False)
-    for ax, item in zip(axes[:, 0], a.runs):
-        title, run = item.split("=", 1)
+    if not a.out.lower().endswith(".png"):
+        ap.error(f"{a.out}: the picture is a PNG, its name ends in .png")
+    runs = []
+    for item in a.runs:
+        if "=" not in item:
+            ap.error(f"{item!r}: give each run as TITLE=RUN_DIR")
+        runs.append(item.split("=", 1))
+        run_params(ap, runs[-1][1], (), "run directories")
+        if a.field not in read_frame(list_frames(runs[-1][1])[-1]):
+            ap.error(f"{runs[-1][1]}: its frames have no field {a.field!r} (--field)")
+    fig, axes = plt.subplots(len(runs), 1, figsize=(8, 2.3 * len(runs)), squeeze=False)
+    for ax, (title, run) in zip(axes[:, 0], runs):
         frame = read_frame(list_frames(run)[-1])
         x = frame["x"]
         sc = ax.scatter(x[:, 0], x[:, 1], c=np.minimum(frame[a.field], a.vmax), s=0.3, vmin=0.0, vmax=a.vmax)

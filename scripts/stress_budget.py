@@ -21,6 +21,9 @@ import sys
 
 import numpy as np
 
+from mpisph.arguments import parse_sets
+from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.errors import InputError
 from mpisph.measure import thrust_ratio
 from mpisph.particles import WALL, WALL_SLIP
 from mpisph.physics import drucker_prager as dp_module
@@ -113,6 +116,14 @@ def main():
     ap.add_argument("--rows", type=int, default=5)
     ap.add_argument("--out", default="runs/stress_budget")
     a = ap.parse_args()
+    try:
+        module = load_case_module(a.case)
+        case = build_case(module, resolve_params(module, parse_sets(a.settings)))
+    except InputError as e:
+        ap.error(str(e))
+    if case.scheme != "riemann_granular" or case.dim != 2:
+        ap.error(f"{a.case} runs {case.scheme} in {case.dim}D: this script watches riemann_granular's stress "
+                 "update in 2D (column_collapse_2d, cohesive_failure_2d, vertical_cut)")
     budget = Budget(a.every)
     update = dp_module.RiemannGranular.update_stress
 

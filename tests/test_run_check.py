@@ -32,3 +32,25 @@ def test_a_run_with_what_the_script_reads_passes_and_others_stop_in_one_line(tmp
             run_params(ap, str(directory), needs, "inclined planes")
         err = capsys.readouterr().err.strip().splitlines()
         assert stop.value.code == 2 and message in err[-1] and err[-1].startswith("a_script.py: error: ")
+
+
+@pytest.mark.parametrize("script, args, message", [
+    ("cut_stability.py", ["RUN"], "is a run of 'dam_break_2d', which has no cohesion, phi, psi: this script reads soil"),
+    ("remedy_panels.py", ["OUT.png", "water=RUN"], "its frames have no field 'plastic_strain' (--field)"),
+    ("remedy_panels.py", ["OUT.png", "RUN"], "give each run as TITLE=RUN_DIR"),
+    ("stress_budget.py", ["dam_break_2d"], "dam_break_2d runs riemann_fluid in 2D: this script watches riemann_granular"),
+])
+def test_the_analysis_scripts_stop_in_one_line_on_a_run_they_do_not_read(tmp_path, script, args, message):
+    """Scripts that crashed on a fluid run (a KeyError deep inside, or a budget with nothing in it)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    run = a_run(tmp_path / "run", {"case": "dam_break_2d", "rho0": 1000.0, "g": 9.8})
+    scripts = Path(__file__).resolve().parent.parent / "scripts"
+    words = [str(run) if a == "RUN" else str(tmp_path / a) if a == "OUT.png" else a.replace("RUN", str(run))
+             for a in args]
+    r = subprocess.run([sys.executable, str(scripts / script), *words], capture_output=True, text=True, timeout=120,
+                       cwd=scripts)
+    err = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and "Traceback" not in r.stderr and message in err[-1], r.stderr
+    assert not (tmp_path / "OUT.png").exists()
