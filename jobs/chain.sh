@@ -1,6 +1,7 @@
 # What the Slurm and PBS job scripts share (sourced by both): a node-local numba cache warmed by
 # one rank per node, the run, and a follow-up job from the run's last frame when a signal stopped
-# it before t_end (a chain of jobs). With MPISPH_DRY_RUN=1 every command is printed, not run.
+# it before t_end (a chain of jobs). With MPISPH_DRY_RUN=1 every command is printed, not run (the
+# check that the case exists still reads it).
 #
 # The batch script sets, before sourcing:
 #   LAUNCH=(...)             the launcher of all ranks (srun, mpirun)
@@ -30,7 +31,13 @@ export NUMBA_NUM_THREADS=1 OMP_NUM_THREADS=1
 export OMPI_MCA_odls_base_sigkill_timeout="${OMPI_MCA_odls_base_sigkill_timeout:-120}"  # mpirun's grace after SIGTERM
 
 say() { echo "mpisph job: $*"; }
+# A case that does not exist stops the job here, in one line, before the warm-up and the run take
+# their nodes (a dry run checks it too: it reads the case, it runs nothing)
+"$PY" -m mpisph info "$CASE" > /dev/null || exit 2
 say "job ${CHAIN_INDEX} of at most ${CHAIN_MAX}; output in ${OUT}; numba cache in ${NUMBA_CACHE_DIR}"
+if [ -n "${SIGNAL_AFTER:-}" ]; then
+    say "SIGUSR1 to this job in ${SIGNAL_AFTER} s"
+fi
 
 # run CMD...: run it, or print it in a dry run
 run() {
@@ -61,7 +68,6 @@ else
     if [ -n "${SIGNAL_AFTER:-}" ]; then
         (sleep "$SIGNAL_AFTER" && kill -USR1 $$) &
         TIMER_PID=$!
-        say "SIGUSR1 to this job in ${SIGNAL_AFTER} s"
     fi
     trap 'say "signal received: asking the run to stop"; kill -USR1 "$RUN_PID" 2>/dev/null || true' USR1 TERM
     STATUS=0

@@ -65,6 +65,7 @@ def test_pbs_job_lines(tmp_path):
            "ARGS": "--set dp=0.02", "WALLTIME_SECONDS": "3600", "SELECT": "2:ncpus=2:mpiprocs=2", "PBS_QUEUE": "long",
            "MPISPH_DRY_RUN_LAST_LINE": STOPPED}
     lines = _render("pbs/mpisph.pbs", env)
+    assert "mpisph job: SIGUSR1 to this job in 3480 s" in lines  # the walltime less 120 s, shown in a dry run too
     commands = [line for line in lines if line.startswith("+ ")]
     assert commands == [
         "+ mpirun -np 2 --map-by ppr:1:node .venv/bin/python -m mpisph flume_3d --t-end 1e-9 "
@@ -75,6 +76,23 @@ def test_pbs_job_lines(tmp_path):
         "runs/x/frame_00003.hdf,OUT=runs/flume_3d-99,CHAIN_INDEX=2,CHAIN_MAX=20,SELECT=2:ncpus=2:mpiprocs=2 "
         "jobs/pbs/mpisph.pbs",
     ]
+
+
+@pytest.mark.parametrize("script, env", [
+    ("slurm/mpisph.sbatch", {"SLURM_SUBMIT_DIR": str(ROOT), "SLURM_NNODES": "1", "SLURM_NTASKS": "2",
+                             "SLURM_JOB_ID": "7"}),
+    ("pbs/mpisph.pbs", {"PBS_O_WORKDIR": str(ROOT), "PBS_JOBID": "7.server", "CASE": "flume3d"})])
+def test_a_job_of_a_case_that_does_not_exist_stops_in_one_line(tmp_path, script, env):
+    """A mistyped case stops the job before the warm-up takes the nodes, with mpisph's own line."""
+    nodefile = tmp_path / "nodes"
+    nodefile.write_text("n1\n")
+    env = {"PATH": os.environ["PATH"], "MPISPH_DRY_RUN": "1", "TMPDIR": "/scratch/node", "USER": "alice",
+           "PBS_NODEFILE": str(nodefile), **env}
+    args = ["flume3d"] if script.startswith("slurm") else []
+    r = subprocess.run(["bash", str(ROOT / "jobs" / script), *args], env=env, capture_output=True, text=True,
+                       timeout=60)
+    assert r.returncode == 2 and "+ " not in r.stdout
+    assert r.stderr.strip().splitlines()[-1] == "mpisph: error: unknown case 'flume3d'; did you mean 'flume_3d'?"
 
 
 DRIVER = """
