@@ -68,12 +68,13 @@ def along(axis):
     return normal
 
 
-def block(lo, hi, dp, what="the box", normal=None):
+def block(lo, hi, dp, what="the box", normal=None, keep=None):
     """The cell-centred lattice filling the box [lo, hi] (2D or 3D), as a source (with ``normal``,
-    positions -> unit normals, a wall's)."""
+    positions -> unit normals, a wall's; with ``keep``, positions -> bool mask, only the points it
+    keeps: a slope cut from the box, for example)."""
     counts = _layer_counts(lo, hi, dp, what)
     return LatticePoints(Lattice((0,) * len(lo), tuple(counts), dp, Frame(origin=tuple(map(float, lo)))),
-                         normal=normal)
+                         keep=keep, normal=normal)
 
 
 def box(lo, hi, dp, what="the box"):
