@@ -120,6 +120,8 @@ RUN_PARAMS = {
                                  "(work: neighbour pairs)", positive=True),
     "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",
                                positive=True),
+    "damping": Param(0.0, "1/s", "rate c of the velocity damping -c v that settles a body to rest before a "
+                     "restart without it (forces.VelocityDamping); 0: none", bounds=(0.0, math.inf)),
 }
 
 # Every case that offers the stabiliser ``shifting`` exposes this.

@@ -9,6 +9,7 @@ moving particles only. The acceleration is summed in this order:
    artificial viscosity; mu(I): its momentum);
 3. the stabilisers' terms (artificial stress);
 4. the case's own terms (``Case.forces``);
+5. ``VelocityDamping``, where the run parameter ``damping`` is set;
 
 with the frozen terms first (in that order), then the others (in that order).
 A term is ``frozen`` when its value is fixed over one neighbour configuration
@@ -78,6 +79,34 @@ class Gravity(UniformAcceleration):
     """The acceleration of gravity, Case.gravity [m/s^2]."""
 
     name = "gravity"
+
+
+@njit(cache=True)
+def add_damping(n, kind, v, rate, acc):
+    """acc_i -= rate v_i for the moving particles in [0, n)."""
+    dim = acc.shape[1]
+    for i in range(n):
+        if kind[i] == MOVING:
+            for a in range(dim):
+                acc[i, a] -= rate * v[i, a]
+
+
+class VelocityDamping(ForceTerm):
+    """-c v: damping in proportion to each particle's mass, at the rate c [1/s] (the run parameter
+    ``damping``), which takes kinetic energy out of the moving particles: a body brought to rest
+    under its load this way (dynamic relaxation) is then run on without it by a restart from its
+    settled frame. c near the body's lowest angular frequency damps its slowest motion fastest; far
+    more slows the settling down, as an overdamped oscillator creeps. Not a wall force."""
+
+    name = "damping"
+    pairwise = False
+
+    def __init__(self, rate):
+        self.rate = float(rate)
+
+    def add(self, ctx, acc):
+        pa = ctx.particles
+        add_damping(pa.n_owned, pa.kind, pa.v, self.rate, acc)
 
 
 class Forces:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from . import surface
 from .errors import InputError
-from .forces import Forces, Gravity
+from .forces import Forces, Gravity, VelocityDamping
 from .integrators import INTEGRATORS
 from .integrators.time_step import TimeStepCriteria
 from .kernels import Kernel
@@ -67,7 +67,9 @@ def make_parts(case, params):
     scheme = make_scheme(case, kernel)
     if case.integrator not in INTEGRATORS:
         raise InputError(f"integrator must be one of {', '.join(INTEGRATORS)}, not {case.integrator!r}")
-    terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces)
+    damping = [VelocityDamping(params["damping"])] if params["damping"] > 0.0 else []
+    terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces,
+             *damping)
     forces = Forces(terms)
     integrator = INTEGRATORS[case.integrator](scheme, forces)
     criteria = TimeStepCriteria(params["time_stepping"], kernel.h, case.u_ref, params["max_time_step"])
