@@ -33,7 +33,7 @@ WORD_COMMANDS = {  # the commands that take plain words: their usage and what th
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
          f"       {WORD_COMMANDS['list'][0]}\n"
-         "       python -m mpisph info CASE [--set NAME=VALUE ...]\n"
+         "       python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME\n"
          f"       {WORD_COMMANDS['report'][0]}\n"
          f"       {WORD_COMMANDS['plot'][0]}\n"
          f"       {COMPARE_USAGE}")
@@ -96,6 +96,32 @@ def cmd_info(name, overrides):
     for f in fields:
         shape = "x".join(map(str, f.shape_in(case.dim))) or "scalar"
         print(f"  {f.name:<{width}}  {np.dtype(f.dtype).name:<7} {shape:<6} {f.doc}")
+
+
+def cmd_frame_info(path):
+    """What the frame ``path`` holds: its case, time and step, its particles, and each array with its
+    type, shape and meaning (the meaning from its case's fields, where the case can be built)."""
+    import numpy as np
+
+    from .case import build_case, load_case_module, resolve_params
+    from .io.frames import read_frame
+    from .parts import make_parts
+    frame = read_frame(path, walls=True)
+    params = frame["params"]
+    try:
+        module = load_case_module(params["case"])
+        values = resolve_params(module, {}, base=params)  # a parameter newer than the frame: its default
+        docs = {f.name: f.doc for f in make_parts(build_case(module, values), values).frame_fields}
+    except (InputError, OSError, KeyError):  # the case file gone, or changed past its frames
+        docs = {}
+    moving = int(np.count_nonzero(frame["kind"] == 0))
+    print(f"{path}: case {params.get('case')}, t = {frame['t']:g} s, step {frame['step']}, {frame['dim']}D, "
+          f"{len(frame['gid'])} particles ({moving} moving)")
+    arrays = {k: a for k, a in frame.items() if isinstance(a, np.ndarray)}
+    width = max(map(len, arrays))
+    for name, a in arrays.items():
+        shape = "x".join(map(str, a.shape[1:])) or "scalar"
+        print(f"  {name:<{width}}  {a.dtype.name:<7} {shape:<6} {docs.get(name, '')}".rstrip())
 
 
 def cmd_report(paths):
@@ -324,11 +350,16 @@ def main(argv=None, comm=None):
                 cmd_list()
             return 0
         if argv[:1] == ["info"]:
-            info = Parser(prog="mpisph info", usage="python -m mpisph info CASE [--set NAME=VALUE ...]")
+            info = Parser(prog="mpisph info", usage="python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME")
             info.add_argument("case")
             add_set(info)
             args = info.parse_args(argv[1:])
-            if comm.rank == 0:
+            if os.path.isfile(args.case) and not args.case.endswith(".py"):
+                if args.overrides:
+                    raise InputError("info FRAME takes no --set: a frame holds the parameters it was written with")
+                if comm.rank == 0:
+                    cmd_frame_info(args.case)
+            elif comm.rank == 0:
                 cmd_info(args.case, parse_sets(args.overrides))
             return 0
         if argv[:1] == ["report"]:

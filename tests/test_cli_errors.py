@@ -443,3 +443,19 @@ def test_a_bad_gauge_is_refused_before_anything_is_written(existing_output, tmp_
     result = mpisph([tmp_path / "bad_gauge.py", *TINY, "--out", out], timeout=120)
     assert_clean_error(result, *fragments)
     assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]
+
+
+def test_info_on_a_frame_lists_what_it_holds(tmp_path, capsys):
+    """`info FRAME`: the frame's case, time and particles, and each array with its meaning and unit
+    (from its case's fields), where `info` took only a case; a --set with a frame is refused."""
+    r = mpisph(["elliptical_drop", *TINY, "--out", tmp_path], timeout=120)
+    assert r.returncode == 0, r.stderr
+    frame = tmp_path / "frame_00001.hdf"
+    out = in_process(["info", frame], capsys)
+    assert out.returncode == 0 and out.stderr == ""
+    lines = out.stdout.splitlines()
+    assert lines[0].startswith(f"{frame}: case elliptical_drop, t = 0.0002 s, step ")
+    assert lines[0].endswith(" particles (" + lines[0].split("(")[1])  # its moving particles counted
+    rho = next(line for line in lines if line.split()[0] == "rho")
+    assert rho.split()[1:3] == ["float64", "scalar"] and rho.endswith("[kg/m^3]")
+    assert_clean_error(in_process(["info", frame, "--set", "dp=0.1"], capsys), "info FRAME takes no --set")
