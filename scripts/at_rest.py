@@ -4,7 +4,8 @@
 
 Per frame (every ``--every``-th and the last): the largest speed and its fraction of the run's
 peak, the 99.9th and 99th percentiles, the mean, the number of particles above 1 % of the peak,
-and the density range over rho0 with the number of particles beyond 1.5 rho0; then the
+and the density range over rho0 (for mu(I) grains the bulk density at rest, phi_max rho_s0) with the
+number of particles beyond 1.5 rho0; then the
 ``--fastest`` particles of the last frame with their place, velocity, the speed at which they
 moved since the frame before (displacement over the frame interval: a particle whose velocity the
 transport-velocity shift cancels has a velocity but does not move), density, pressure and distance
@@ -26,12 +27,18 @@ def main():
     ap.add_argument("--every", type=int, default=5)
     ap.add_argument("--fastest", type=int, default=10)
     a = ap.parse_args()
-    run_params(ap, a.run, ("rho0",), "runs whose material has a density rho0 (fluids, elastic solids, soils)")
+    params = run_params(ap, a.run, (), "runs of a material with a reference density")
+    if "rho0" in params:
+        rho0 = float(params["rho0"])
+    elif "rho_s0" in params and "phi_max" in params:  # mu(I) grains: the bulk density at rest
+        rho0 = float(params["phi_max"]) * float(params["rho_s0"])
+    else:
+        ap.error(f"{a.run} is a run of {params.get('case')!r}, which has neither rho0 nor rho_s0 and phi_max: this "
+                 "script reads runs of a material with a reference density")
     rows = []  # per frame: t, the moving particles' speeds, rho / rho0 (least, largest, beyond 1.5)
     last = None
     for path in list_frames(a.run):  # one frame in memory at a time; the last two are kept
         before, last = last, read_frame(path)
-        rho0 = float(last["params"]["rho0"])
         moving = last["kind"] == MOVING
         rho = last["rho"][moving] / rho0
         rows.append((last["t"], np.linalg.norm(last["v"][moving], axis=1), rho.min(), rho.max(), np.sum(rho > 1.5)))

@@ -15,7 +15,8 @@ def a_run(directory, params):
     directory.mkdir()
     n = 4
     fields = {"x": np.arange(2 * n, dtype=float).reshape(n, 2), "gid": np.arange(n, dtype=np.int64),
-              "kind": np.zeros(n, np.int8), "v": np.zeros((n, 2)), "rho": np.ones(n), "mass": np.ones(n)}
+              "kind": np.zeros(n, np.int8), "v": np.zeros((n, 2)), "rho": np.ones(n), "mass": np.ones(n),
+              "p": np.zeros(n)}
     write_frame(frame_path(str(directory), 0), MPI.COMM_SELF, fields, time=0.0, step=0, dim=2, params=params)
     return directory
 
@@ -54,3 +55,21 @@ def test_the_analysis_scripts_stop_in_one_line_on_a_run_they_do_not_read(tmp_pat
     err = r.stderr.strip().splitlines()
     assert r.returncode == 2 and "Traceback" not in r.stderr and message in err[-1], r.stderr
     assert not (tmp_path / "OUT.png").exists()
+
+
+def test_at_rest_takes_the_bulk_density_at_rest_of_mu_i_grains(tmp_path):
+    """A mu(I) run has no rho0: at_rest.py measures its densities against phi_max rho_s0, where it
+    refused such runs; a run with neither is refused in one line."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    scripts = Path(__file__).resolve().parent.parent / "scripts"
+    grains = a_run(tmp_path / "grains", {"case": "inclined_plane", "rho_s0": 800.0, "phi_max": 0.6, "dp": 1.0})
+    r = subprocess.run([sys.executable, str(scripts / "at_rest.py"), str(grains)], capture_output=True, text=True,
+                       timeout=120, cwd=scripts)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines()[0] == "peak speed 0 m/s; rho0 480 kg/m^3"
+    neither = a_run(tmp_path / "neither", {"case": "x"})
+    r = subprocess.run([sys.executable, str(scripts / "at_rest.py"), str(neither)], capture_output=True, text=True,
+                       timeout=120, cwd=scripts)
+    assert r.returncode == 2 and "which has neither rho0 nor rho_s0 and phi_max" in r.stderr.splitlines()[-1]
