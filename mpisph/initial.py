@@ -86,6 +86,12 @@ def particles_from_case(comm, case, parts):
             columns["stress"].append(np.zeros((n, 6)))
             columns["normal"].append(normal)
             distance = np.full(n, np.nan) if item.distance is None else _initial(item.distance, index, x, ())
+            bad = ~(distance >= 0.0) if item.distance is not None else np.zeros(n, bool)
+            if bad.any() and problem is None:
+                k = int(np.argmax(bad))
+                problem = (f"wall {item.name!r}: its distance gives {distance[k]:.6g} m at "
+                           f"{np.round(x[k], 6).tolist()}; Wall.distance is each particle's depth behind the wall "
+                           "surface, 0 or more")
             columns["wall_distance"].append(distance)
             continue
         columns["kind"].append(_body_kind(item, index, x))

@@ -326,6 +326,14 @@ class _PartLayers(Points):
         return self.walls.lattices[self.k].points(np.array([index]))[0]
 
 
+def depth_behind(surface):
+    """The function of positions giving their distance to the nearest point of ``surface``: the depth
+    of its wall layers' particles behind it (``Wall.distance``, which the Morris walls of mu_i and
+    classic_granular read), as ``geometry.depth_outside`` gives it for a box."""
+    triangles, normals, part = joined([surface])
+    return lambda x: nearest_on_parts(np.ascontiguousarray(x, dtype=float), triangles, normals, part, 1)[0][:, 0]
+
+
 def _coverage(points, others, dp):
     """sum_o dp^3 W(|p - o|) over ``others`` about each of ``points`` (Wendland C2, h = dp) as a
     fraction of a full cubic lattice's sum, and the distance to the nearest of them (inf where

@@ -459,3 +459,23 @@ def test_info_on_a_frame_lists_what_it_holds(tmp_path, capsys):
     rho = next(line for line in lines if line.split()[0] == "rho")
     assert rho.split()[1:3] == ["float64", "scalar"] and rho.endswith("[kg/m^3]")
     assert_clean_error(in_process(["info", frame, "--set", "dp=0.1"], capsys), "info FRAME takes no --set")
+
+
+def test_a_wall_distance_below_zero_is_refused_before_anything_is_written(existing_output, tmp_path):
+    """Wall.distance is a depth behind the wall surface: one written with its sign turned (as a user
+    writing the distance of a mesh wall may) ran into a non-positive density some 1900 steps later
+    under the Morris walls of mu_i; now the run stops in one line naming the wall."""
+    (tmp_path / "signed.py").write_text(
+        "import dataclasses\n"
+        "from mpisph.case import load_case_module\n"
+        "_cut = load_case_module('vertical_cut')\n"
+        "PARAMS = _cut.PARAMS\n"
+        "def setup(p):\n"
+        "    case = _cut.setup(p)\n"
+        "    tank = case.walls[0]\n"
+        "    case.walls = [dataclasses.replace(tank, distance=lambda x, d=tank.distance: -d(x))]\n"
+        "    return case\n")
+    out, marker = existing_output
+    result = mpisph([tmp_path / "signed.py", *TINY, "--out", out], timeout=120)
+    assert_clean_error(result, "wall 'tank': its distance gives -", "Wall.distance is each particle's depth")
+    assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from mpisph.errors import InputError
-from mpisph.geometry import box, box_walls
+from mpisph.geometry import box, box_walls, depth_outside
 from mpisph.kernels import Kernel
 from mpisph.lattice import Frame
-from mpisph.meshes import Surface, fill, read_surface, wall_layers
+from mpisph.meshes import Surface, depth_behind, fill, read_surface, wall_layers
 from mpisph.wall_push import push_over_continuous
 
 # The six faces of the unit cube as quads, each listed counter-clockwise seen from outside.
@@ -124,6 +124,9 @@ def test_wall_layers_behind_an_open_box_are_box_walls_with_rounded_corners():
     order, ref_order = np.lexsort(x.T), np.lexsort(ref_x[within].T)
     assert np.allclose(x[order], ref_x[within][ref_order])
     assert np.allclose(n[order], ref_n[within][ref_order])
+    # their depth behind the surface (Wall.distance for the Morris walls) is the box's, as for box_walls
+    np.testing.assert_allclose(depth_behind(Surface("tank", open_box(lo, hi)))(x), depth_outside(lo, hi)(x),
+                               atol=1e-12)
 
 
 def test_parts_share_the_layers_behind_their_joints_without_overlap():
