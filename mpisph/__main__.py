@@ -78,10 +78,11 @@ def cmd_info(name, overrides):
     module = load_case_module(name)
     values = resolve_params(module, overrides)
     case = build_case(module, values)
-    fields = make_parts(case, values).frame_fields  # before any line: parameters that cannot go together stop here
+    parts = make_parts(case, values)  # before any line: parameters that cannot go together stop here
+    fields = parts.frame_fields
     print(f"{name}: {describe(module)}")
     forces = ", ".join(type(f).__name__ for f in case.forces)
-    print(f"scheme {case.scheme}, integrator {case.integrator}, "
+    print(f"scheme {case.scheme}, integrator {parts.integrator.name}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
     print()
     params = all_params(module)

@@ -189,12 +189,12 @@ def classic_viscosity_params(alpha, beta, scheme):
 
 
 def scheme_keywords(p, classic_options, riemann_options):
-    """The Case keywords for the scheme ``p.scheme``: a classic one (``classic_*``) with the artificial
-    viscosity of ``classic_viscosity_params``, the options ``classic_options`` and 002_'s
-    predictor-corrector; a Riemann one with ``riemann_options``."""
+    """The Case keywords for the scheme ``p.scheme``: a classic one (``classic_*``, stepped by its own
+    integrator, 002_'s predictor-corrector) with the artificial viscosity of
+    ``classic_viscosity_params`` and the options ``classic_options``; a Riemann one with
+    ``riemann_options``."""
     if p.scheme.startswith("classic_"):
-        return {"scheme": p.scheme, "integrator": "predictor_corrector",
-                "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, **classic_options}}
+        return {"scheme": p.scheme, "scheme_options": {"alpha": p.av_alpha, "beta": p.av_beta, **classic_options}}
     return {"scheme": p.scheme, "scheme_options": riemann_options}
 
 
@@ -295,7 +295,7 @@ class Case:
     density_reinit: str = "none"  # none | inner | free_surface
     stabilisers: tuple | str = ()  # names of mpisph.stabilisers.STABILISERS, in order ("a+b" or "none" too)
     forces: list = field(default_factory=list)  # the case's own force terms (forces.ForceTerm), last in the sum
-    integrator: str = "position_verlet"  # a name of mpisph.integrators.INTEGRATORS
+    integrator: str | None = None  # a name of mpisph.integrators.INTEGRATORS; None: the scheme's own
     scheme_options: dict = field(default_factory=dict)  # the scheme's discretisation options (Scheme.options)
     u_ref: float = 0.0  # reference speed of 001_ Eq. 10 [m/s]
     warnings: list = field(default_factory=list)  # one-line warnings printed when a run starts

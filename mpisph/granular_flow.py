@@ -67,8 +67,9 @@ def mu_i_params(alpha_doc, viscous_step):
 
 
 def mu_i_scheme(p):
-    """Case keywords of the mu_i scheme with the options of ``mu_i_params`` and symplectic Verlet."""
-    return dict(scheme="mu_i", integrator="symplectic_verlet",
+    """Case keywords of the mu_i scheme (stepped by its own integrator, symplectic Verlet) with the
+    options of ``mu_i_params``."""
+    return dict(scheme="mu_i",
                 scheme_options={"alpha": p.alpha, "beta_max": p.beta_max, "viscous_form": p.viscous_form,
                                 "viscous_step": p.viscous_step, "viscous_stress": p.viscous_stress,
                                 "viscosity_mean": p.viscosity_mean,

@@ -65,12 +65,13 @@ def make_parts(case, params):
     kernel = Kernel(params["kernel"], params["h_factor"] * case.dp, case.dim,
                     adaptive=any(s.adapts_kernel for s in stabilisers))
     scheme = make_scheme(case, kernel)
-    if case.integrator not in INTEGRATORS:
-        raise InputError(f"integrator must be one of {', '.join(INTEGRATORS)}, not {case.integrator!r}")
+    integrator_name = case.integrator or scheme.integrator
+    if integrator_name not in INTEGRATORS:
+        raise InputError(f"integrator must be one of {', '.join(INTEGRATORS)}, not {integrator_name!r}")
     damping = [VelocityDamping(params["damping"])] if params["damping"] > 0.0 else []
     terms = (Gravity(case.gravity), *scheme.forces(), *(t for s in stabilisers for t in s.forces()), *case.forces,
              *damping)
     forces = Forces(terms)
-    integrator = INTEGRATORS[case.integrator](scheme, forces)
+    integrator = INTEGRATORS[integrator_name](scheme, forces)
     criteria = TimeStepCriteria(params["time_stepping"], kernel.h, case.u_ref, params["max_time_step"])
     return Parts(kernel, scheme, forces, stabilisers, integrator, criteria)

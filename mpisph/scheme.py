@@ -33,6 +33,7 @@ class Scheme:
     """Base of every scheme; the defaults are what a scheme without that part does."""
 
     name = ""
+    integrator = "position_verlet"  # the integrator (integrators/) of a case that names none
     materials = ()  # the material classes (materials.py) this scheme discretises
     fields = ()  # per-particle fields it owns (particles.Field)
     derived = ()  # the output-only fields of ``derived_fields`` (particles.Field)

@@ -220,3 +220,19 @@ def test_clamped_particles_evolve_their_density():
         rates.append(drho_dt)
     assert np.abs(rates[0][: n // 3]).min() > 0.0
     assert np.array_equal(rates[0], rates[1])
+
+
+@pytest.mark.parametrize("case_name, overrides, integrator", [
+    ("vertical_cut", {"scheme": "classic_granular"}, "predictor_corrector"),
+    ("vertical_cut", {}, "position_verlet"),
+    ("lube_collapse_2d", {}, "symplectic_verlet"),
+    ("dam_break_2d", {}, "position_verlet")])
+def test_a_case_that_names_no_integrator_is_stepped_by_its_schemes(case_name, overrides, integrator):
+    """Case.integrator None: the scheme's own (002_'s predictor-corrector for the classic schemes,
+    004_'s symplectic Verlet for mu_i), where a case of one's own with scheme="mu_i" was stepped by
+    position Verlet unless it named symplectic_verlet too."""
+    module = load_case_module(case_name)
+    values = resolve_params(module, {"dp": "0.1" if case_name != "lube_collapse_2d" else "0.01", **overrides})
+    case = build_case(module, values)
+    assert case.integrator is None
+    assert make_parts(case, values).integrator.name == integrator

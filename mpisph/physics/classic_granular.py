@@ -172,6 +172,7 @@ class ClassicGranular(MorrisWalls, Scheme):
     gives 1.5-2)."""
 
     name = "classic_granular"
+    integrator = "predictor_corrector"  # 002_ Sec. 3
     materials = (DruckerPrager,)
     options = {"alpha": 1.0, "beta": 1.0, "chi_max": 1.5}
     state_fields = ("rho", "p", "stress")

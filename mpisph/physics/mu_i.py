@@ -424,6 +424,7 @@ class MuIScheme(MorrisWalls, Scheme):
     """
 
     name = "mu_i"
+    integrator = "symplectic_verlet"  # 004_ Sec. 3.4
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     derived = (Field("inertial_number", (), np.float64, "inertial number I from the volume fraction (004_ Eq. 8) [-]"),
