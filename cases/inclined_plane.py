@@ -26,7 +26,7 @@ from mpisph.references import inclined_plane_surface_velocity, inclined_plane_ve
 
 PARAMS = {
     "H": Param(0.1, "m", "depth of the layer", positive=True),
-    "theta": Param(25.0, "deg", "slope angle"),
+    "theta": Param(25.0, "deg", "slope angle", bounds=ANGLE),
     "dp": Param(0.005, "m", "particle spacing", positive=True),
     "columns": Param(40, "-", "particles along the periodic slope (its length is columns * dp)", positive=True),
     "g": Param(9.81, "m/s^2", "gravity", positive=True),

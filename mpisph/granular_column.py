@@ -19,6 +19,7 @@ rest; the floor is a bed of Morris ghost particles (no slip, 004_ Eqs. 34-36).
 import math
 
 from .case import ANGLE, Body, Case, Front, MuIGranular, Param, Wall, density_reinit_param
+from .errors import InputError
 from .geometry import along, bed_layers, block, depth, lattice_layers, lattice_mismatch, support_layers
 from .granular_flow import mach_compressibility, mu_i_params, mu_i_scheme
 from .references import MU_I_MATERIALS, planar_runout
@@ -57,6 +58,9 @@ def sand(p, H0):
     mu_s = math.tan(math.radians(p.mu_s_deg))
     rho0 = p.phi_max * p.rho_s0
     K_t = p.K_t if p.K_t != 0 else mach_compressibility(rho0, p.g * H0)
+    if p.tau_0 == 0 and mu_s == 0:
+        raise InputError("tau_0 = 0 takes mu_s phi_max rho_s0 g H_0, which mu_s_deg = 0 makes 0: give tau_0 "
+                         "in Pa, or mu_s_deg > 0")
     tau_0 = p.tau_0 if p.tau_0 != 0 else mu_s * rho0 * p.g * H0
     return MuIGranular(rho_s0=p.rho_s0, d0=p.d, mu_s=mu_s, mu_2=math.tan(math.radians(p.mu_2_deg)), I_0=p.I_0,
                        K_t=K_t, tau_0=tau_0, m_0=p.m_0, phi_max=p.phi_max, phi_min=p.phi_min)
