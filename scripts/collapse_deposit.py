@@ -16,8 +16,10 @@ frames over the front's peak speed (measure.edge_rest_ratio, at most 1e-3 at res
 far beyond r_0, over r_0, 90, 95 and 99 % of the mass lie (measure.mass_extent).
 
 With ``--at T [T ...]`` it measures each run at the frame nearest each time T instead of at its last
-frame (the edge speed between that frame and the one before), so that one run gives the deposit
-against time: whether the runout and the centre's height still change once the collapse is over.
+frame (the edge speed between that frame and the one before; nan at the first frame), so that one
+run gives the deposit against time: whether the runout and the centre's height still change once
+the collapse is over. A run restarted into a directory of its own, whose first frame is not the
+column at t = 0, is refused.
 
 With ``--ensemble`` it also prints, for the runs of each shape, a and r_0 / dp (for example the same
 column run with frames at other times, hence other sequences of time steps), the mean runout
@@ -91,7 +93,8 @@ def deposit(run, at=None):
     return {"a": a, "radial": radial, "resolution": length / dp, "layers": int(round(top0 / dp)),
             "t": float(last["t"]), "ratio": (extent - length) / length, "law": float(law),
             "centre": measure.deposit_height(last, dp, 0.3 * length, radial=radial) / top0, "surface": surface,
-            "rest": measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial),
+            "rest": (measure.edge_rest_ratio(before, last, diag["t"], diag["front"], dp, radial=radial) if k > 0
+                     else float("nan")),  # the first frame has none before it
             "onset": measure.collapse_onset(diag["t"], diag["front"], length),
             "beyond": int(beyond.sum()), "farthest": measure.farthest_edge(last, dp, radial) / length - 1.0,
             "extents": [(measure.mass_extent(last, q, radial=radial) - length) / length for q in FRACTIONS],
@@ -150,7 +153,7 @@ def plot_surfaces(deposits, png):
     symbol = "r_0" if deposits[0]["radial"] else "L_0"
     for d in deposits:
         x, top = surface_line(d["frame"], d["dp"], d["radial"], d["length"])
-        ax.step(x, top, where="mid", label=f"a = {d['a']:g}, {symbol} / dp = {d['resolution']:.0f}")
+        ax.step(x, top, where="mid", label=f"a = {d['a']:g}, {symbol} / dp = {d['resolution']:.0f}, t = {d['t']:.3g} s")
     ax.set_xlabel(f"distance / {symbol}")
     ax.set_ylabel(f"surface / {symbol}")
     ax.set_aspect("equal")
@@ -164,11 +167,16 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--at", type=float, nargs="+", metavar="T", help="measure at the frames nearest these times")
     ap.add_argument("--ensemble", action="store_true", help="print the mean over the runs of each spacing")
-    ap.add_argument("--profile", type=float, metavar="STEP", help="print the surfaces side by side every STEP")
+    ap.add_argument("--profile", type=float, metavar="STEP",
+                    help="print the surfaces side by side every STEP (in L_0 or r_0) out to the farthest grain")
     ap.add_argument("--plot", metavar="PNG", help="draw the surfaces of all the runs into PNG")
     args = ap.parse_args()
     for run in args.runs:
         run_params(ap, run, ("a",), "the mu(I) column collapses (lube_collapse_2d, lube_collapse_3d)")
+        start = frame_time(list_frames(run)[0])
+        if start > 0:  # a run restarted into a directory of its own: the column is not here
+            ap.error(f"{run}'s first frame is at t = {start:g} s, not 0: the column before its collapse is not in "
+                     "this directory (a restart written elsewhere); give the directory of the run from t = 0")
     deposits = []
     for run, at in ((run, at) for run in args.runs for at in (args.at or [None])):
         d = deposit(run, at)
