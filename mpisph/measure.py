@@ -98,7 +98,10 @@ def layer_means(frame, dp, values):
 def runout(frame, dp):
     """Right end of the connected deposit: the last dp-wide bin before the first empty one, plus its width.
 
-    Particles beyond a gap (grains thrown ahead of the toe) do not count.
+    Particles beyond a gap (grains thrown ahead of the toe) do not count. The bins start at the
+    leftmost particle's centre, so a lattice column L_0 long that has not moved reads L_0 + dp/2
+    (runout ratio 0.5 dp / L_0, 0.025 at L_0 / dp = 20), where radial_runout, binned from the axis,
+    reads r_0: the planar sections of docs/VALIDATION.md were measured so.
     """
     left, _, occupied, _ = _surface_profile(frame["x"], dp)
     return float(left[_last_connected(occupied)] + dp)
