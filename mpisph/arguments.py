@@ -7,8 +7,8 @@ import sys
 from .errors import InputError
 
 
-COMPARE_USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,... [--set NAME=VALUE ...] [--t-end T] "
-                 "[--output-interval DT] [-n RANKS] [--out DIR] [--colour FIELD]")  # compare.py
+COMPARE_USAGE = ("python -m mpisph compare CASE --stabiliser NAME,NAME,...|--vary NAME=A,B,... [--set NAME=VALUE ...] "
+                 "[--t-end T] [--output-interval DT] [-n RANKS] [--out DIR] [--colour FIELD]")  # compare.py
 
 
 class Parser(argparse.ArgumentParser):

@@ -1,9 +1,11 @@
 """``python -m mpisph compare CASE --stabiliser none,tvf,utvf [--set NAME=VALUE ...] [--t-end T]
 [--output-interval DT] [-n RANKS] [--out DIR] [--colour FIELD]``: the case once per stabiliser, side
 by side (the times as in a run, or as --set t_end and output_interval); a run may combine remedies,
-as ``--stabiliser utvf,artificial_stress+utvf`` (stabilisers/__init__.py).
+as ``--stabiliser utvf,artificial_stress+utvf`` (stabilisers/__init__.py). ``--vary NAME=A,B,...``
+compares the values of any other parameter instead (``--vary m_0=1.2,40``, ``--vary
+viscous_form=cleary,corrected_stress``); ``--stabiliser A,B`` is ``--vary stabiliser=A,B``.
 
-Each run goes to OUT/<stabiliser>/ (OUT defaults to runs/compare_CASE) under ``mpirun -n RANKS``;
+Each run goes to OUT/<value>/ (OUT defaults to runs/compare_CASE) under ``mpirun -n RANKS``;
 OUT/compare.md gets a table with, for each, how the run ended and, from its last frame and its
 diagnostics:
 
@@ -23,11 +25,12 @@ diagnostics:
 - the runout (last ``front`` minus the first) where the case records a front.
 
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
-runs seen along y) on one colour scale and OUT/compare_energy.png the kinetic and total energy against time. A run
-that blows up (status 3) is measured at its last frame; a run that fails otherwise is listed as
-failed, with its error line (its whole standard error is in OUT/<stabiliser>/stderr.txt), and
-compare then exits with status 1 once the others are written. A stabiliser named twice, or a
-``--colour`` field that a run's frames would not hold, stops compare before any run.
+runs seen along y) on one colour scale and OUT/compare_energy.png the kinetic and total energy
+against time. A run that blows up (status 3) is measured at its last frame; a run that fails
+otherwise is listed as failed, with its error line (its whole standard error is in
+OUT/<value>/stderr.txt), and compare then exits with status 1 once the others are written. A value
+named twice, one the parameter does not take, or a ``--colour`` field that a run's frames would not
+hold, stops compare before any run.
 """
 
 import os
@@ -37,7 +40,7 @@ import numpy as np
 
 from . import pairing
 from .arguments import COMPARE_USAGE, Parser, add_set, add_times, parse_sets, with_times
-from .case import build_case, load_case_module, resolve_params
+from .case import all_params, build_case, load_case_module, resolve_params
 from .errors import InputError
 from .instability import tensile_instability
 from .io.diagnostics import read_diagnostics
@@ -51,7 +54,8 @@ from .plots import SPEED_LABEL
 def parse(argv):
     p = Parser(prog="mpisph compare", usage=COMPARE_USAGE)
     p.add_argument("case")
-    p.add_argument("--stabiliser", required=True, help="stabilisers to compare, separated by commas")
+    p.add_argument("--stabiliser", help="stabilisers to compare, separated by commas")
+    p.add_argument("--vary", metavar="NAME=A,B,...", help="another parameter's values to compare instead")
     add_set(p)
     add_times(p)
     p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run")
@@ -60,66 +64,79 @@ def parse(argv):
     a = p.parse_args(argv)
     if a.ranks < 1:
         raise InputError(f"-n takes a positive number of ranks, not {a.ranks}")
+    if (a.stabiliser is None) == (a.vary is None):
+        raise InputError("compare takes --stabiliser A,B,... or --vary NAME=A,B,..., one of the two")
+    if a.vary is not None and "=" not in a.vary:
+        raise InputError(f"--vary takes NAME=A,B,..., not {a.vary!r}")
     return a
 
 
+def varied(a):
+    """(the parameter compared, its values) of the parsed command line ``a``."""
+    name, values = ("stabiliser", a.stabiliser) if a.vary is None else a.vary.split("=", 1)
+    return name.strip(), run_names(values)
+
+
 def run_names(text):
-    """The stabilisers of ``--stabiliser A,B+C,...``, one run each (``none`` is a run too, and B+C
-    one with two remedies)."""
+    """The values of ``--stabiliser A,B+C,...`` or ``--vary NAME=A,B,...``, one run each (``none`` is
+    a run too, and B+C one with two remedies)."""
     return tuple(t.strip() for t in text.split(",") if t.strip())
 
 
-def set_overrides(items):
-    """The parameters of ``--set``; InputError for a stabiliser among them."""
+def set_overrides(items, name):
+    """The parameters of ``--set``; InputError for the compared parameter ``name`` among them."""
     out = parse_sets(items)
-    if "stabiliser" in out:
-        raise InputError("the stabilisers are chosen by --stabiliser, not --set")
+    if name in out:
+        option = "--stabiliser" if name == "stabiliser" else "--vary"
+        raise InputError(f"{name} is what compare varies: give its values to {option}, not --set")
     return out
 
 
-def check_stabilisers(case_name, module, stabilisers, overrides):
-    """InputError for a case (its name and module) without a ``stabiliser`` parameter, an empty
-    list of ``stabilisers`` or one the case does not take beside ``overrides``."""
-    if "stabiliser" not in module.PARAMS:
-        raise InputError(f"case {case_name!r} has no stabiliser parameter to compare")
-    if not stabilisers:
-        raise InputError("--stabiliser names no stabiliser")
-    twice = sorted({name for name in stabilisers if stabilisers.count(name) > 1})
+def check_values(case_name, module, name, runs, overrides):
+    """InputError for a case (its name and module) without the parameter ``name``, an empty list of
+    values ``runs`` or one that the parameter does not take beside ``overrides``."""
+    option = "--stabiliser" if name == "stabiliser" else "--vary"
+    if name not in all_params(module):
+        raise InputError(f"case {case_name!r} has no {name} parameter to compare")
+    if not runs:
+        raise InputError(f"{option} names no value")
+    twice = sorted({value for value in runs if runs.count(value) > 1})
     if twice:
-        raise InputError(f"--stabiliser names {', '.join(twice)} twice: each run goes to a directory of its name")
-    for name in stabilisers:
-        resolve_params(module, {**overrides, "stabiliser": name})
+        raise InputError(f"{option} names {', '.join(twice)} twice: each run goes to a directory of its name")
+    for value in runs:
+        resolve_params(module, {**overrides, name: value})
 
 
-def check_colour(module, stabilisers, overrides, colour):
+def check_colour(module, name, runs, overrides, colour):
     """InputError, before any run, when ``colour`` is neither the speed nor a field that the frames
-    of every run (its stabiliser beside ``overrides``) hold."""
+    of every run (its value of ``name`` beside ``overrides``) hold."""
     if colour == "speed":
         return
-    for name in stabilisers:
-        values = resolve_params(module, {**overrides, "stabiliser": name})
+    for value in runs:
+        values = resolve_params(module, {**overrides, name: value})
         fields = {f.name for f in make_parts(build_case(module, values), values).frame_fields}
         if colour not in fields:
-            raise InputError(f"--colour {colour}: the frames with {name} have no such field "
+            raise InputError(f"--colour {colour}: the frames with {name}={value} have no such field "
                              f"(they hold {', '.join(sorted(fields | {'speed'}))})")
 
 
-def check(case_name, stabilisers, overrides, colour):
-    """The case module and one Case of it (for domain and walls), after ``check_stabilisers`` and
+def check(case_name, name, runs, overrides, colour):
+    """The case module and one Case of it (for domain and walls), after ``check_values`` and
     ``check_colour``."""
     module = load_case_module(case_name)
-    check_stabilisers(case_name, module, stabilisers, overrides)
-    check_colour(module, stabilisers, overrides, colour)
+    check_values(case_name, module, name, runs, overrides)
+    check_colour(module, name, runs, overrides, colour)
     return module, build_case(module, resolve_params(module, overrides))
 
 
-def run_one(case_name, stabiliser, overrides, ranks, out):
-    """Run the case with ``stabiliser`` into ``out``; how it ended: done, blew up, or failed, and why.
+def run_one(case_name, setting, overrides, ranks, out):
+    """Run the case with ``setting`` ({name: value}) beside ``overrides`` into ``out``; how it ended:
+    done, blew up, or failed, and why.
 
     A run that did not finish leaves its whole standard error in ``out``/stderr.txt; the reason given
     is its last line from mpisph (``mpisph: ...``), so that what Open MPI or numba writes after it
     does not take its place."""
-    sets = [f"{k}={v}" for k, v in {**overrides, "stabiliser": stabiliser}.items()]
+    sets = [f"{k}={v}" for k, v in {**overrides, **setting}.items()]
     r = mpirun_mpisph([case_name, "--set", *sets, "--out", out, "--quiet"], ranks=ranks)
     if r.returncode == 0:
         return "done", ""
@@ -175,9 +192,9 @@ def _cell(row, key, fmt, scale=1.0):
     return fmt.format(scale * row[key]) if key in row else "–"
 
 
-def table(case_name, rows):
-    """Markdown lines of the comparison."""
-    lines = [f"| stabiliser ({case_name}) | ended | t [s] | clustering | paired | inner voids | closest pair / dp | "
+def table(case_name, rows, name="stabiliser"):
+    """Markdown lines of the comparison, a row for each value of the parameter ``name``."""
+    lines = [f"| {name} ({case_name}) | ended | t [s] | clustering | paired | inner voids | closest pair / dp | "
              f"fragments (outside the largest) | dE [J] | dE / moved | momentum drift | angular drift | runout [m] |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, (status, row) in rows.items():
@@ -213,7 +230,7 @@ def _label(frames, colour):
 
 
 def pictures(runs, colour, out):
-    """compare_particles.png and compare_energy.png in ``out`` from {stabiliser: run directory}."""
+    """compare_particles.png and compare_energy.png in ``out`` from {run's title: its directory}."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -258,9 +275,9 @@ def pictures(runs, colour, out):
 
 def main(argv):
     a = parse(argv)
-    names = run_names(a.stabiliser)
-    overrides = with_times(set_overrides(a.overrides), a)
-    _, case = check(a.case, names, overrides, a.colour)
+    varies, names = varied(a)
+    overrides = with_times(set_overrides(a.overrides, varies), a)
+    _, case = check(a.case, varies, names, overrides, a.colour)
     # the runs start in the repository's root (launch.mpirun_mpisph): paths given from here go absolute
     case_arg = str(Path(a.case).resolve()) if a.case.endswith(".py") else a.case
     out = Path(a.out or Path("runs") / f"compare_{Path(a.case).stem}").resolve()
@@ -269,19 +286,21 @@ def main(argv):
     except OSError as e:
         raise InputError(f"cannot write output directory {str(out)!r}: {e.strerror or e}") from None
     runs, rows = {}, {}
+    label = (lambda value: value) if varies == "stabiliser" else (lambda value: f"{varies}={value}")
     for name in names:
         runs[name] = out / name
-        status, why = run_one(case_arg, name, overrides, a.ranks, runs[name])
+        status, why = run_one(case_arg, {varies: name}, overrides, a.ranks, runs[name])
         has_frames = runs[name].is_dir() and list_frames(os.fspath(runs[name]))
         rows[name] = (status + (f": {why}" if why and status != "done" else ""),
                       measures(runs[name], case) if status != "failed" and has_frames else None)
-        print(f"compare: {a.case} with {name}: {status}" + (f": {why}" if status == "failed" else ""), flush=True)
+        print(f"compare: {a.case} with {label(name)}: {status}" + (f": {why}" if status == "failed" else ""), flush=True)
     sets = " ".join(f"--set {k}={v}" for k, v in overrides.items())
-    text = [f"# {a.case}: stabilisers side by side", "",
-            f"`python -m mpisph compare {a.case} --stabiliser {','.join(names)} {sets} -n {a.ranks}` "
-            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows), "",
+    choice = f"--stabiliser {','.join(names)}" if varies == "stabiliser" else f"--vary {varies}={','.join(names)}"
+    text = [f"# {a.case}: {'stabilisers' if varies == 'stabiliser' else varies} side by side", "",
+            f"`python -m mpisph compare {a.case} {choice} {sets} -n {a.ranks}` "
+            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows, varies), "",
             "![particles](compare_particles.png)", "", "![energy](compare_energy.png)", ""]
-    pictures(runs, a.colour, out)
+    pictures({label(name): run for name, run in runs.items()}, a.colour, out)
     (out / "compare.md").write_text("\n".join(text))
     print(f"compare: wrote {out / 'compare.md'}", flush=True)
     failed = [name for name in names if rows[name][0].startswith("failed")]

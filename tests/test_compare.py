@@ -7,6 +7,7 @@ import sys
 
 import pytest
 
+from mpisph.io.frames import list_frames, read_frame
 from mpisph.launch import MPI_ENV, ROOT
 
 
@@ -94,11 +95,17 @@ def test_paths_are_read_from_where_compare_is_started(tmp_path):
 @pytest.mark.parametrize("args, message", [
     (["dam_break_3d", "--stabiliser", "none,utvf"], "has no stabiliser parameter"),
     (["cohesive_failure_2d", "--stabiliser", "none,xsph"], "parameter stabiliser must be one of"),
-    (["cohesive_failure_2d", "--stabiliser", "none", "--set", "stabiliser=tvf"], "chosen by --stabiliser"),
-    (["cohesive_failure_2d"], "--stabiliser"),
+    (["cohesive_failure_2d", "--stabiliser", "none", "--set", "stabiliser=tvf"],
+     "stabiliser is what compare varies: give its values to --stabiliser, not --set"),
+    (["cohesive_failure_2d"], "compare takes --stabiliser A,B,... or --vary NAME=A,B,..., one of the two"),
+    (["cohesive_failure_2d", "--stabiliser", "none", "--vary", "phi=20,30"], "one of the two"),
+    (["cohesive_failure_2d", "--vary", "phi"], "--vary takes NAME=A,B,..., not 'phi'"),
+    (["cohesive_failure_2d", "--vary", "phii=20,30"], "case 'cohesive_failure_2d' has no phii parameter"),
+    (["cohesive_failure_2d", "--vary", "phi=20,95"], "phi must lie in [0, 90), not 95.0"),
+    (["lube_collapse_2d", "--vary", "m_0=1.2,40", "--set", "m_0=2"], "m_0 is what compare varies"),
     (["cohesive_failure_2d", "--stabiliser", "utvf,none,utvf"], "names utvf twice"),
     (["cohesive_failure_2d", "--stabiliser", "none,utvf", "--colour", "bogus"],
-     "--colour bogus: the frames with none have no such field (they hold "),
+     "--colour bogus: the frames with stabiliser=none have no such field (they hold "),
 ])
 def test_what_cannot_be_compared_is_one_line(tmp_path, args, message):
     r = compare(*args, "--out", tmp_path)
@@ -106,6 +113,21 @@ def test_what_cannot_be_compared_is_one_line(tmp_path, args, message):
     assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
     if "--colour" in args:  # the fields it names, speed among them once
         assert r.stderr.count("speed") == 1 and "plastic_strain" in r.stderr, r.stderr
+
+
+def test_compare_varies_any_parameter(tmp_path):
+    """--vary NAME=A,B: a run for each value of a parameter that is not a stabiliser (the kernel of
+    the vortex here), into OUT/<value>, its table's rows and the pictures' panels named by it."""
+    r = compare("taylor_green", "--vary", "kernel=wendland_c2,cubic_spline", "--set", "nx=10", "t_end=0.05",
+                "output_interval=0.05", "--out", tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "compare: taylor_green with kernel=cubic_spline: done" in r.stdout
+    text = (tmp_path / "compare.md").read_text()
+    assert text.startswith("# taylor_green: kernel side by side") and "--vary kernel=wendland_c2,cubic_spline" in text
+    assert [row.split(" | ")[0].strip("| ") for row in table_rows(tmp_path / "compare.md")] == ["wendland_c2",
+                                                                                                 "cubic_spline"]
+    for name in ("wendland_c2", "cubic_spline"):
+        assert read_frame(list_frames(tmp_path / name)[-1])["params"]["kernel"] == name
 
 
 def test_an_output_path_that_is_a_file_is_one_line(tmp_path):
