@@ -112,11 +112,12 @@ def check(argv):
     elif head == "compare":
         a = compare.parse(_without_placeholders(argv[1:]))
         module = _case(a.case)
-        compare.set_overrides(a.overrides)
+        varies, values = compare.varied(a)
+        compare.set_overrides(a.overrides, varies)
         _check_sets(module, a.overrides)
-        names = [name for name in compare.run_names(a.stabiliser) if not PLACEHOLDER.search(name)]
-        if names or "stabiliser" not in module.PARAMS:
-            compare.check_stabilisers(a.case, module, names, {})
+        names = [name for name in values if not PLACEHOLDER.search(name)]
+        if names or varies not in compare.all_params(module):
+            compare.check_values(a.case, module, varies, names, {})
     else:
         a = _parser().parse_args(_without_placeholders(argv))
         _check_sets(_case(a.case), a.overrides)
@@ -145,7 +146,8 @@ def test_documented_command_parses(where):
     (["inclined_plane", "--set", "H=deep"], "takes a number"),
     (["lube_collapse_2d", "--set", "viscous_step=implicit|semi"], "must be one of"),
     (["compare", "vertical_cut", "--stabiliser", "none,utvf,tvd"], "must be one of"),
-    (["compare", "vertical_cut", "--stabiliser", "none", "--set", "stabiliser=utvf"], "chosen by --stabiliser"),
+    (["compare", "vertical_cut", "--stabiliser", "none", "--set", "stabiliser=utvf"], "give its values to --stabiliser, not --set"),
+    (["compare", "lube_collapse_2d", "--vary", "m_0=1.2,-1"], "m_0 must be positive"),
     (["compare", "dam_break_3d", "--stabiliser", "none,utvf"], "has no stabiliser parameter"),
     (["cube_failure_3d", "--t-end", "1", "--frames", "3"], "unrecognized"),
     (["no_such_case"], "unknown case"),
