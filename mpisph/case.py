@@ -409,7 +409,9 @@ class Case:
             raise InputError("the domain has no volume: every upper corner must exceed the lower one")
         for a in range(self.dim):
             if self.periodic[a] and hi[a] - lo[a] < 2 * support:
-                raise InputError(f"periodic axis {'xyz'[a]} is shorter than twice the kernel support")
+                raise InputError(f"periodic axis {'xyz'[a]} is {hi[a] - lo[a]:.4g} m, {(hi[a] - lo[a]) / self.dp:.4g} dp "
+                                 f"long, shorter than twice the kernel support, {2 * support:.4g} m = "
+                                 f"{2 * support / self.dp:.4g} dp")
         if self.density_reinit not in DENSITY_REINITS:
             raise InputError(f"density_reinit must be one of {', '.join(DENSITY_REINITS)}, not {self.density_reinit!r}")
 

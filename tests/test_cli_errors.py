@@ -78,6 +78,8 @@ def in_process(argv, capsys):
 
 @pytest.mark.parametrize("args, fragments", [
     (["inclined_plane", "--set", "theta=95"], ["theta must lie in [0, 90), not 95.0"]),
+    (["inclined_plane", "--set", "columns=4"], ["periodic axis x is 0.02 m, 4 dp long, shorter than twice the "
+                                               "kernel support, 0.026 m = 5.2 dp"]),
     (["lube_collapse_2d", "--set", "mu_s_deg=0"], ["tau_0 = 0 takes mu_s phi_max rho_s0 g H_0, which mu_s_deg = 0"]),
     (["vertical_cut", "--set", "nu=0.5"], ["nu must lie in [0, 0.5), not 0.5"]),
     (["oscillating_beam", "--set", "nu=0.7"], ["nu must lie in [0, 0.5), not 0.7"]),
