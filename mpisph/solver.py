@@ -47,13 +47,13 @@ from mpi4py import MPI
 
 from . import surface
 from .blowup import COINCIDENT, PROBLEMS, first_bad_particle, first_coincident_pair
-from .overlap import check_start
 from .context import StepContext
 from .errors import BlowUp, InputError, NoConvergence, Stopped
 from .io.frames import frame_path, regular_frame_number, write_frame
 from .io.series import add_to_series
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
+from .overlap import check_start
 from .parallel.decomposition import SlabDecomposition, migrate, particle_work
 from .parallel.halo import Halo
 from .timing import PhaseTimer

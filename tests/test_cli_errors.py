@@ -419,7 +419,8 @@ def test_compare_takes_the_times_as_a_run_does(capsys):
     """--t-end and --output-interval are the --set times by another name, in compare as in a run."""
     from mpisph import compare
     a = compare.parse(["elliptical_drop", "--stabiliser", "none", "--t-end", "0.002", "--output-interval", "0.001"])
-    assert with_times(compare.set_overrides(a.overrides), a) == {"t_end": "0.002", "output_interval": "0.001"}
+    assert with_times(compare.set_overrides(a.overrides, "stabiliser"), a) == {"t_end": "0.002",
+                                                                                 "output_interval": "0.001"}
     r = in_process(["compare", "elliptical_drop", "--stabiliser", "none", "--set", "t_end=0.1", "--t-end", "0.2"],
                    capsys)
     assert_clean_error(r, "--t-end 0.2 and --set t_end=0.1 disagree")

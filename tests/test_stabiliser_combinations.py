@@ -5,7 +5,7 @@ tests/test_rank_agreement.py."""
 import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
-from mpisph.compare import check_stabilisers
+from mpisph.compare import check_values
 from mpisph.errors import InputError
 from mpisph.parts import make_parts
 from mpisph.stabilisers import STABILISERS, stabiliser_names
@@ -56,6 +56,6 @@ def test_a_case_file_is_held_to_the_same_rules():
 
 def test_compare_takes_a_combination_as_one_run():
     module = load_case_module("cohesive_failure_2d")
-    check_stabilisers("cohesive_failure_2d", module, ("none", "utvf", "artificial_stress+utvf"), {})
+    check_values("cohesive_failure_2d", module, "stabiliser", ("none", "utvf", "artificial_stress+utvf"), {})
     with pytest.raises(InputError, match="both shift the positions"):
-        check_stabilisers("cohesive_failure_2d", module, ("none", "utvf+shifting"), {})
+        check_values("cohesive_failure_2d", module, "stabiliser", ("none", "utvf+shifting"), {})

@@ -105,7 +105,7 @@ def _columns(shape, dim, symmetric):
     return width, tuple(range(width))
 
 
-def _stored(a, columns=None):
+def _stored(a, columns):
     """Local array as stored in PointData: bool -> int8, scalars 1-D, the rest 2-D with the
     field's flat components in the columns ``_columns`` gives and zeros elsewhere."""
     a = np.asarray(a)
