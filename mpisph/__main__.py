@@ -32,6 +32,7 @@ WORD_COMMANDS = {  # the commands that take plain words: their usage and what th
 
 USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-interval DT] "
          "[--out DIR] [--restart FRAME] [--quiet]\n"
+         "       python -m mpisph --restart FRAME [--set NAME=VALUE ...] [--t-end T] [--out DIR] [--quiet]\n"
          f"       {WORD_COMMANDS['list'][0]}\n"
          "       python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME\n"
          f"       {WORD_COMMANDS['report'][0]}\n"
@@ -41,7 +42,8 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
 
 def _parser():
     p = Parser(prog="mpisph", usage=USAGE, description="MPI-parallel SPH for fluids and geomaterials.")
-    p.add_argument("case")
+    p.add_argument("case", nargs="?", help="the case (a name of cases/ or a case file); a restart's default: "
+                   "its frame's")
     add_set(p)
     add_times(p)
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
@@ -270,6 +272,8 @@ def run(args, comm):
     from .wall_forces import wall_force_columns
 
     baseline = resident_bytes()
+    if args.case is None:  # a restart of the frame's own case
+        args.case = str(read_rows(args.restart, 0, 0)["params"].get("case"))
     module = cases.load_case_module(args.case)
     overrides = _overrides(args)
     if args.restart:
@@ -380,7 +384,11 @@ def main(argv=None, comm=None):
                 raise InputError("compare starts its own mpirun for each run: start it without mpirun")
             from .compare import main as compare
             return compare(argv[1:])
-        run(_parser().parse_args(argv), comm)
+        parser = _parser()
+        args = parser.parse_args(argv)
+        if args.case is None and args.restart is None:
+            parser.error("the following arguments are required: case")
+        run(args, comm)
         return 0
     except InputError as e:
         if comm.rank == 0:

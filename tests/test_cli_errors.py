@@ -484,3 +484,18 @@ def test_a_wall_distance_below_zero_is_refused_before_anything_is_written(existi
     result = mpisph([tmp_path / "signed.py", *TINY, "--out", out], timeout=120)
     assert_clean_error(result, "wall 'tank': its distance gives -", "Wall.distance is each particle's depth")
     assert marker.read_bytes() == b"earlier result" and os.listdir(out) == ["frame_00000.hdf"]
+
+
+def test_a_restart_without_its_case_takes_the_frames(tmp_path):
+    """`python -m mpisph --restart FRAME`: the frame names its case, so the case may be left out; the
+    restart ends with the bits of one that names it."""
+    r = mpisph(["elliptical_drop", *TINY, "--out", tmp_path / "run"], timeout=120)
+    assert r.returncode == 0, r.stderr
+    frame = tmp_path / "run" / "frame_00001.hdf"
+    ends = []
+    for words, out in (([], "bare"), (["elliptical_drop"], "named")):
+        r = mpisph([*words, "--restart", frame, "--t-end", "0.0006", "--out", tmp_path / out, "--quiet"], timeout=120)
+        assert r.returncode == 0, r.stderr
+        ends.append(read_frame(str(tmp_path / out / "frame_00003.hdf")))
+    for name in ("x", "v", "rho", "p"):
+        assert ends[0][name].tobytes() == ends[1][name].tobytes(), name
