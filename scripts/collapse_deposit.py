@@ -164,7 +164,7 @@ def plot_surfaces(deposits, png):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("runs", nargs="+")
+    ap.add_argument("runs", nargs="+", help="lube_collapse_2d and lube_collapse_3d run directories")
     ap.add_argument("--at", type=float, nargs="+", metavar="T", help="measure at the frames nearest these times")
     ap.add_argument("--ensemble", action="store_true", help="print the mean over the runs of each spacing")
     ap.add_argument("--profile", type=float, metavar="STEP",

@@ -61,8 +61,8 @@ def classical_forces(params, top, height, width):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("runs", nargs="+")
-    ap.add_argument("--every", type=int, default=5)
+    ap.add_argument("runs", nargs="+", help="flume_3d run directories")
+    ap.add_argument("--every", type=int, default=5, help="report every EVERY-th frame (and the last)")
     ap.add_argument("--gap", type=float, default=0.1, help="distance of the section upstream of the face [m]")
     a = ap.parse_args()
     for run in a.runs:

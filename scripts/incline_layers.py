@@ -235,7 +235,7 @@ def _stress_pairs(mm, rho, T, dx, dy, c):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("run")
+    ap.add_argument("run", help="an inclined_plane run directory")
     ap.add_argument("--frames", type=int, default=40, help="the last this many frames are averaged")
     a = ap.parse_args()
     run_params(ap, a.run, ("theta", "I_0"), "mu(I) inclined planes (inclined_plane)")

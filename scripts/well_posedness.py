@@ -128,10 +128,14 @@ def material_rows():
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("runs", nargs="*")
-    ap.add_argument("--materials", action="store_true")
-    ap.add_argument("--compressible", action="store_true")
-    ap.add_argument("--growth", action="store_true")
+    ap.add_argument("runs", nargs="*", help="mu(I) run directories: the share of their dissipation where the law "
+                    "is ill-posed")
+    ap.add_argument("--materials", action="store_true", help="each material of 004_ Table 1: its well-posed window "
+                    "and Barker & Gray's partial regularisation")
+    ap.add_argument("--compressible", action="store_true", help="Lube's columns: the bulk friction the compressible "
+                    "equations need against each viscous stress's")
+    ap.add_argument("--growth", action="store_true", help="Lube's columns: the linear growth of waves in a uniform "
+                    "shear with each viscous stress")
     a = ap.parse_args()
     if a.growth:
         for name in SPACINGS:
