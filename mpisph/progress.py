@@ -31,7 +31,7 @@ class Progress:
                   f"frames in {sim.out_dir}")
         for line in sim.parts.scheme.report():
             self._say(line)
-        for line in sim.case.warnings:
+        for line in (*sim.case.warnings, *sim.parts.scheme.warnings()):
             self.warn(line)
 
     def warn(self, line):

@@ -128,6 +128,10 @@ class Scheme:
         """Lines for the start of a run: derived constants a user should see."""
         return ()
 
+    def warnings(self):
+        """Warnings for the start of a run: settings the scheme runs with but that its model does not hold for."""
+        return ()
+
     def closing_report(self):
         """Lines for the end of a run, after its throughput: what a user should know of its cost."""
         return ()

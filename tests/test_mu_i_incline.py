@@ -25,6 +25,17 @@ from mpirun import mpisph
 SMALL = ["--set", "H=0.02", "--set", "dp=0.002", "--set", "columns=8", "--set", "m_0=0.2"]
 
 
+def test_grains_wider_than_the_particles_are_warned_of(tmp_path):
+    """d = 5 mm at dp = 2 mm: the run goes on, with a warning that the law is a continuum's; at the
+    case's d = 0.5 mm there is none."""
+    warning = "mu(I): a particle (dp = 0.002 m) is narrower than a grain (d = 0.005 m)"
+    for d, warned in (("0.005", True), ("0.0005", False)):
+        r = mpisph(["inclined_plane", *SMALL, "--set", f"d={d}", "--t-end", "0.002", "--output-interval", "0.002",
+                    "--out", tmp_path / d, "--quiet"], ranks=1)
+        assert r.returncode == 0, r.stderr
+        assert (warning in r.stderr) == warned, r.stderr
+
+
 def test_slope_steeper_than_mu_2_runs_with_a_warning(tmp_path):
     """tan(theta) >= mu_2: the run warns and the layer accelerates. The friction law bounds the shear
     stress by mu_2 times the pressure (Eq. 7), so the bed's shear should stay below mu_2 times its

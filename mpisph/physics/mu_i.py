@@ -559,6 +559,13 @@ class MuIScheme(MorrisWalls, Scheme):
                 f"I = {jostle_inertial_number(0.01, grains):.2g}, 10 % at I = "
                 f"{jostle_inertial_number(0.1, grains):.2g} (docs/INCLINE.md)")
 
+    def warnings(self):
+        d0 = self.material.params.d0
+        if self.dp >= d0:
+            return ()
+        return (f"mu(I): a particle (dp = {self.dp:g} m) is narrower than a grain (d = {d0:g} m): the law is a "
+                "continuum's, for particles many grains wide (004_ takes dp = 10 d)",)
+
     def closing_report(self):
         return (self.implicit_viscosity.summary(),) if self.implicit else ()
 
