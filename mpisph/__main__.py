@@ -48,7 +48,7 @@ def _parser():
     add_times(p)
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
                    "a run replaces the frames an earlier run wrote there after its start (with a warning when they "
-                   "are another case's)")
+                   "are another case's), but a restart into its frame's directory that no --out names refuses to")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
     p.add_argument("--quiet", action="store_true",
                    help="print neither the opening, progress nor closing lines (warnings and errors still print)")
@@ -120,6 +120,7 @@ def cmd_frame_info(path):
     moving = int(np.count_nonzero(frame["kind"] == 0))
     print(f"{path}: case {params.get('case')}, t = {frame['t']:g} s, step {frame['step']}, {frame['dim']}D, "
           f"{len(frame['gid'])} particles ({moving} moving)")
+    print("run with: " + " ".join(f"{k}={v}" for k, v in sorted(params.items()) if k != "case"))
     arrays = {k: a for k, a in frame.items() if isinstance(a, np.ndarray)}
     width = max(map(len, arrays))
     for name, a in arrays.items():
@@ -359,7 +360,7 @@ def main(argv=None, comm=None):
             info.add_argument("case")
             add_set(info)
             args = info.parse_args(argv[1:])
-            if os.path.isfile(args.case) and not args.case.endswith(".py"):
+            if args.case.endswith((".hdf", ".vtkhdf")) or (os.path.isfile(args.case) and not args.case.endswith(".py")):
                 if args.overrides:
                     raise InputError("info FRAME takes no --set: a frame holds the parameters it was written with")
                 if comm.rank == 0:

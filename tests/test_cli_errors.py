@@ -451,8 +451,9 @@ def test_a_bad_gauge_is_refused_before_anything_is_written(existing_output, tmp_
 
 
 def test_info_on_a_frame_lists_what_it_holds(tmp_path, capsys):
-    """`info FRAME`: the frame's case, time and particles, and each array with its meaning and unit
-    (from its case's fields), where `info` took only a case; a --set with a frame is refused."""
+    """`info FRAME`: the frame's case, time and particles, the parameters it was run with, and each
+    array with its meaning and unit (from its case's fields), where `info` took only a case; a --set
+    with a frame is refused, and a frame that is not there is named as such, not as an unknown case."""
     r = mpisph(["elliptical_drop", *TINY, "--out", tmp_path], timeout=120)
     assert r.returncode == 0, r.stderr
     frame = tmp_path / "frame_00001.hdf"
@@ -461,9 +462,11 @@ def test_info_on_a_frame_lists_what_it_holds(tmp_path, capsys):
     lines = out.stdout.splitlines()
     assert lines[0].startswith(f"{frame}: case elliptical_drop, t = 0.0002 s, step ")
     assert lines[0].endswith(" particles (" + lines[0].split("(")[1])  # its moving particles counted
+    assert lines[1].startswith("run with: ") and " dp=0.2 " in lines[1] and " t_end=0.0004 " in lines[1]
     rho = next(line for line in lines if line.split()[0] == "rho")
     assert rho.split()[1:3] == ["float64", "scalar"] and rho.endswith("[kg/m^3]")
     assert_clean_error(in_process(["info", frame, "--set", "dp=0.1"], capsys), "info FRAME takes no --set")
+    assert_clean_error(in_process(["info", tmp_path / "nope.hdf"], capsys), "nope.hdf: no such file")
 
 
 def test_a_wall_distance_below_zero_is_refused_before_anything_is_written(existing_output, tmp_path):
