@@ -22,7 +22,10 @@ diagnostics:
   |L_end - L_0| / (M v_ref R), where v_ref = sqrt(2 max KE / M) and R is the initial radius of
   gyration (walls and clamps exchange momentum with the body and periodic wraps move r x p, so
   there the columns would say nothing and are left out);
-- the runout (last ``front`` minus the first) where the case records a front.
+- the runout (last ``front`` minus the first) where the case records a front;
+
+and, in a second table, what the case records: each probe's displacement at the end and the peak
+force on each wall of ``Case.wall_forces``.
 
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
 runs seen along y) on one colour scale and OUT/compare_energy.png the kinetic and total energy
@@ -185,7 +188,26 @@ def measures(out, case):
             out["dL"] = float(np.linalg.norm(ang[:, -1] - ang[:, 0]) / (mass * v_ref * radius))
     if "front" in d:
         out["runout"] = float(d["front"][-1] - d["front"][0])
+    axes = "xyz"[:case.dim]
+    out["records"] = {
+        **{f"{name}'s displacement at the end [m]": float(np.sqrt(sum(d[f"{name}_u{c}"][-1] ** 2 for c in axes)))
+           for name in case.probes},
+        **{f"peak force on {name} [{'N' if case.dim == 3 else 'N/m'}]":
+           float(np.sqrt(sum(d[f"force_{name}_{c}"] ** 2 for c in axes)).max()) for name in case.wall_forces}}
     return out
+
+
+def records_table(case_name, rows, name="stabiliser"):
+    """Markdown lines of what the case records of each run (its probes' displacement at the end, the
+    peak force on each of its named walls); none for a case that records neither."""
+    columns = next((list(row["records"]) for _, row in rows.values() if row is not None and row["records"]), [])
+    if not columns:
+        return []
+    lines = [f"| {name} ({case_name}) | " + " | ".join(columns) + " |", "|---" * (len(columns) + 1) + "|"]
+    for value, (_, row) in rows.items():
+        cells = [f"{row['records'][c]:.4g}" for c in columns] if row is not None else ["–"] * len(columns)
+        lines.append(f"| {value} | " + " | ".join(cells) + " |")
+    return ["", "What the case records (diagnostics.csv):", "", *lines]
 
 
 def _cell(row, key, fmt, scale=1.0):
@@ -298,7 +320,8 @@ def main(argv):
     choice = f"--stabiliser {','.join(names)}" if varies == "stabiliser" else f"--vary {varies}={','.join(names)}"
     text = [f"# {a.case}: {'stabilisers' if varies == 'stabiliser' else varies} side by side", "",
             f"`python -m mpisph compare {a.case} {choice} {sets} -n {a.ranks}` "
-            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows, varies), "",
+            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows, varies),
+            *records_table(a.case, rows, varies), "",
             "![particles](compare_particles.png)", "", "![energy](compare_energy.png)", ""]
     pictures({label(name): run for name, run in runs.items()}, a.colour, out)
     (out / "compare.md").write_text("\n".join(text))

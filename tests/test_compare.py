@@ -5,6 +5,7 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from mpisph.io.frames import list_frames, read_frame
@@ -23,7 +24,10 @@ def compare(*args, ranks=None, cwd=ROOT):
 
 
 def table_rows(path):
-    return [line for line in path.read_text().splitlines() if line.startswith("| ") and "---" not in line][1:]
+    """The rows of compare.md's first table (the one of every case), without its header."""
+    text = path.read_text()
+    first = text[text.index("| "):].split("\n\n")[0]
+    return [line for line in first.splitlines() if line.startswith("| ") and "---" not in line][1:]
 
 
 @pytest.mark.ranks
@@ -153,3 +157,24 @@ def test_a_run_that_fails_makes_compare_fail_after_the_table(tmp_path):
 def test_compare_is_not_started_under_mpirun(tmp_path):
     r = compare("cohesive_failure_2d", "--stabiliser", "none", "--out", tmp_path, ranks=2)
     assert r.returncode == 2 and "without mpirun" in r.stderr
+
+
+def test_compare_tables_what_the_case_records(tmp_path):
+    """A case with probes and wall forces (docs/examples/slope_2d.py): a second table gives each
+    run's probe displacements at the end and the peak force on each named wall, from its
+    diagnostics.csv; the weaker slope moves more."""
+    from mpisph.io.diagnostics import read_diagnostics
+    r = compare(ROOT / "docs" / "examples" / "slope_2d.py", "--vary", "cohesion=2e3,4e3", "--set", "beta=60", "dp=0.2",
+                "t_end=0.3", "output_interval=0.3", "--out", tmp_path)
+    assert r.returncode == 0, r.stderr
+    text = (tmp_path / "compare.md").read_text()
+    header = ("| cohesion (" + str(ROOT / "docs" / "examples" / "slope_2d.py") + ") | crest's displacement at the end [m] "
+              "| toe's displacement at the end [m] | peak force on back [N/m] |")
+    assert header in text
+    rows = text.split("What the case records (diagnostics.csv):")[1].splitlines()
+    rows = [line for line in rows if line.startswith(("| 2e3 |", "| 4e3 |"))]
+    crest = {line.split(" | ")[0][2:]: float(line.split(" | ")[1]) for line in rows}
+    for value in ("2e3", "4e3"):
+        d = read_diagnostics(tmp_path / value / "diagnostics.csv")
+        assert crest[value] == pytest.approx(float(np.hypot(d["crest_ux"][-1], d["crest_uy"][-1])), rel=1e-3)
+    assert crest["2e3"] > crest["4e3"]
