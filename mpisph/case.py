@@ -18,7 +18,7 @@ import numpy as np
 
 from .barrier_load import check_barrier_loads
 from .errors import InputError
-from .gauges import check_gauges
+from .gauges import check_gauges, gauge_warnings
 from .kernels import KERNELS
 from .sources import as_points
 from .materials import DruckerPrager, ElasticSolid, Fluid, MuIGranular  # noqa: F401  (case files import them from here)
@@ -501,9 +501,9 @@ def angle_warnings(params, values):
 
 def build_case(module, values):
     """Call the case's ``setup`` with the parameter values as attributes; its warnings gain those
-    of ``angle_warnings``."""
+    of ``angle_warnings`` and ``gauges.gauge_warnings``."""
     case = module.setup(SimpleNamespace(**values))
-    case.warnings = [*case.warnings, *angle_warnings(module.PARAMS, values)]
+    case.warnings = [*case.warnings, *angle_warnings(module.PARAMS, values), *gauge_warnings(case)]
     return case
 
 

@@ -56,12 +56,12 @@ from .plots import SPEED_LABEL
 
 def parse(argv):
     p = Parser(prog="mpisph compare", usage=COMPARE_USAGE)
-    p.add_argument("case")
+    p.add_argument("case", help="the case (a name of cases/ or a case file)")
     p.add_argument("--stabiliser", help="stabilisers to compare, separated by commas")
     p.add_argument("--vary", metavar="NAME=A,B,...", help="another parameter's values to compare instead")
     add_set(p)
     add_times(p)
-    p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run")
+    p.add_argument("-n", dest="ranks", type=int, default=1, help="MPI ranks per run (default 1)")
     p.add_argument("--out", help="output directory (default runs/compare_CASE)")
     p.add_argument("--colour", default="speed", help="particle field of the picture (default: speed)")
     a = p.parse_args(argv)

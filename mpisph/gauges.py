@@ -143,6 +143,24 @@ def check_gauges(case):
                              f"{case.dim}D case, an array (n, {width}); it has shape {shape}")
 
 
+def gauge_warnings(case):
+    """A warning for each gauge with points, or stations, outside the case's domain, which record
+    nothing (nan) there."""
+    lo, hi = (np.asarray(c, float) for c in case.domain)
+    out = []
+    for g in case.gauges:
+        where = np.asarray(g.points if isinstance(g, Gauge) else g.stations, float)
+        axes = slice(None) if isinstance(g, Gauge) else slice(0, case.dim - 1)
+        if where.ndim != 2 or where.shape[1] != len(lo[axes]):
+            continue  # check_gauges refuses it
+        outside = np.any((where < lo[axes]) | (where > hi[axes]), axis=1)
+        if outside.any():
+            out.append(f"gauge {g.name!r}: {int(outside.sum())} of its {len(where)} points lie outside the domain "
+                       f"{lo.tolist()} to {hi.tolist()} (the first at {where[outside][0].tolist()}), where they "
+                       "record nan")
+    return out
+
+
 class GaugeRecorder:
     """Writes the case's gauges, one CSV each (``Diagnostics`` files: rank 0 writes, a restart
     continues them), and beside each the positions of its points or stations

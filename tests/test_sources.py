@@ -2,6 +2,8 @@
 particles in that slab, whatever the cuts, so ranks that each build only their own slab together
 build the case."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -193,3 +195,18 @@ def test_an_angle_that_looks_like_radians_is_warned():
     for overrides in ({"dp": "0.2"}, {"dp": "0.2", "phi": "0", "psi": "0"}):
         case = build_case(module, resolve_params(module, overrides))
         assert not [w for w in case.warnings if "angles are in degrees" in w]
+
+
+def test_a_gauge_outside_the_domain_is_warned_of():
+    """Points beyond the domain record nan; the case says which gauge has them when it is built."""
+    from mpisph.gauges import Gauge, SurfaceGauge
+    module = load_case_module(str(Path(__file__).parent / "cases" / "gauged_tank.py"))
+    values = resolve_params(module, {})
+    case = build_case(module, values)
+    assert case.warnings == []
+    lo, hi = case.domain
+    case.gauges += [Gauge.line("tall", (0.5, 0.1), (0.5, 9.0), 5), SurfaceGauge("wide", np.array([[0.5], [50.0]]))]
+    from mpisph.gauges import gauge_warnings
+    warned = gauge_warnings(case)
+    assert [w.split(":")[0] for w in warned] == ["gauge 'tall'", "gauge 'wide'"]
+    assert "4 of its 5 points lie outside the domain" in warned[0]  # y = 2.3, 4.6, 6.8 and 9 m, above 1 m and "1 of its 2 points" in warned[1]
