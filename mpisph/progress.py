@@ -44,16 +44,17 @@ class Progress:
         if not at_frame and now - self._last < PRINT_EVERY:
             return
         self._last = now
-        # the pace (ETA, throughput) of the first line is since the start; that of later lines since
-        # the first line, leaving out the numba compile that the first steps take
-        since_wall, since_t, since_step = self._first or (0.0, t0, step0)
-        if self._first is None:
+        # the pace (ETA, throughput) of later lines is since the first line, leaving out the numba
+        # compile that the first steps take; the first line's throughput is since the start, its ETA "-"
+        first = self._first is None
+        since_wall, since_t, since_step = (0.0, t0, step0) if first else self._first
+        if first:
             self._first = (wall, sim.t, sim.step)
         spent, done = wall - since_wall, sim.t - since_t
-        eta = spent * (sim.params["t_end"] - sim.t) / done if done > 0 else float("nan")
+        eta = f"{'-':>8}  " if first or not done > 0 else f"{spent * (sim.params['t_end'] - sim.t) / done:8.1f} s"
         rate = self.n_total * (sim.step - since_step) / spent if spent > 0 else 0.0
         self._say(f"step {sim.step:8d}  t {sim.t:.5e} s  dt {sim.time_step:.3e} s  N {self.n_total}  "
-                  f"wall {wall:8.1f} s  ETA {eta:8.1f} s  {rate:.3e} particle-steps/s"
+                  f"wall {wall:8.1f} s  ETA {eta}  {rate:.3e} particle-steps/s"
                   + (f"  frame {sim.frame_index}" if at_frame else ""))
 
     def finish(self, sim, wall, step0, ended="done"):
