@@ -197,6 +197,15 @@ def measures(out, case):
     return out
 
 
+COLUMNS = ("Of each run's last frame: clustering, the share of particles nearer than dp/2 to another; paired, "
+           "of those the ones that the flow's own squeeze of the lattice does not explain (solids and soils); "
+           "inner voids, particles at holes inside the material; the closest pair over dp; fragments, the "
+           "pieces the body is in (particles within 1.5 dp linked) and the share outside the largest. Over the "
+           "run: dE, the change of kinetic, gravitational and strain energy, and over the energy that moved; "
+           "the drifts of momentum and angular momentum (cases without walls); the runout, the front's advance "
+           "(mpisph/compare.py).")
+
+
 def records_table(case_name, rows, name="stabiliser"):
     """Markdown lines of what the case records of each run (its probes' displacement at the end, the
     peak force on each of its named walls); none for a case that records neither."""
@@ -319,9 +328,8 @@ def main(argv):
     sets = " ".join(f"--set {k}={v}" for k, v in overrides.items())
     choice = f"--stabiliser {','.join(names)}" if varies == "stabiliser" else f"--vary {varies}={','.join(names)}"
     text = [f"# {a.case}: {'stabilisers' if varies == 'stabiliser' else varies} side by side", "",
-            f"`python -m mpisph compare {a.case} {choice} {sets} -n {a.ranks}` "
-            f"(mpisph/compare.py says what each column is).", "", *table(a.case, rows, varies),
-            *records_table(a.case, rows, varies), "",
+            f"`python -m mpisph compare {a.case} {choice} {sets} -n {a.ranks}`", "", *table(a.case, rows, varies), "",
+            COLUMNS, *records_table(a.case, rows, varies), "",
             "![particles](compare_particles.png)", "", "![energy](compare_energy.png)", ""]
     pictures({label(name): run for name, run in runs.items()}, a.colour, out)
     (out / "compare.md").write_text("\n".join(text))
