@@ -86,19 +86,23 @@ def run_names(text):
     return tuple(t.strip() for t in text.split(",") if t.strip())
 
 
+def _option(name):
+    """The option of compare that names the values of the parameter ``name``."""
+    return "--stabiliser" if name == "stabiliser" else "--vary"
+
+
 def set_overrides(items, name):
     """The parameters of ``--set``; InputError for the compared parameter ``name`` among them."""
     out = parse_sets(items)
     if name in out:
-        option = "--stabiliser" if name == "stabiliser" else "--vary"
-        raise InputError(f"{name} is what compare varies: give its values to {option}, not --set")
+        raise InputError(f"{name} is what compare varies: give its values to {_option(name)}, not --set")
     return out
 
 
 def check_values(case_name, module, name, runs, overrides):
     """InputError for a case (its name and module) without the parameter ``name``, an empty list of
     values ``runs`` or one that the parameter does not take beside ``overrides``."""
-    option = "--stabiliser" if name == "stabiliser" else "--vary"
+    option = _option(name)
     if name not in all_params(module):
         raise InputError(f"case {case_name!r} has no {name} parameter to compare")
     if not runs:

@@ -127,6 +127,12 @@ def _columns(field, dim):
     return [f"{name}{c}" for c in range(int(np.prod(field.shape_in(dim))))]
 
 
+def _placed(g, dim):
+    """(where, what, coordinates each) of a gauge in ``dim`` dimensions: its points as given, or a
+    surface gauge's stations."""
+    return (g.points, "points", dim) if isinstance(g, Gauge) else (g.stations, "stations", dim - 1)
+
+
 def check_gauges(case):
     """Raise InputError for a gauge whose points, or a surface gauge whose stations, do not have
     the case's number of coordinates (dim; dim - 1 for the stations), or a name given twice."""
@@ -135,8 +141,7 @@ def check_gauges(case):
     if twice:
         raise InputError(f"gauge names {', '.join(map(repr, twice))} are given twice: each names a file")
     for g in case.gauges:
-        where, what, width = ((g.points, "points", case.dim) if isinstance(g, Gauge) else
-                              (g.stations, "stations", case.dim - 1))
+        where, what, width = _placed(g, case.dim)
         shape = np.shape(where)
         if len(shape) != 2 or shape[1] != width or shape[0] == 0:
             raise InputError(f"gauge {g.name!r}: its {what} take {width} coordinate{'s' * (width > 1)} each in this "
@@ -149,11 +154,11 @@ def gauge_warnings(case):
     lo, hi = (np.asarray(c, float) for c in case.domain)
     out = []
     for g in case.gauges:
-        where = np.asarray(g.points if isinstance(g, Gauge) else g.stations, float)
-        axes = slice(None) if isinstance(g, Gauge) else slice(0, case.dim - 1)
-        if where.ndim != 2 or where.shape[1] != len(lo[axes]):
+        where, _, width = _placed(g, case.dim)
+        if np.shape(where)[1:] != (width,):
             continue  # check_gauges refuses it
-        outside = np.any((where < lo[axes]) | (where > hi[axes]), axis=1)
+        where = np.asarray(where, float)
+        outside = np.any((where < lo[:width]) | (where > hi[:width]), axis=1)
         if outside.any():
             out.append(f"gauge {g.name!r}: {int(outside.sum())} of its {len(where)} points lie outside the domain "
                        f"{lo.tolist()} to {hi.tolist()} (the first at {where[outside][0].tolist()}), where they "
@@ -173,7 +178,7 @@ class GaugeRecorder:
         self.gauges = list(case.gauges)
         self.files = []
         self.columns = []
-        dim = case.dim
+        self.dim = dim = case.dim
         fields = {f.name: f for f in particles.fields}
         for g in self.gauges:
             if isinstance(g, Gauge):
@@ -195,16 +200,12 @@ class GaugeRecorder:
             if self.comm.rank == 0:
                 self._write_points(out_dir, g)
 
-    @staticmethod
-    def _write_points(out_dir, g):
-        if isinstance(g, Gauge):
-            where, prefix, axes = np.asarray(g.points, float), "p", "xyz"
-        else:
-            where, prefix, axes = np.asarray(g.stations, float), "s", "xy"
+    def _write_points(self, out_dir, g):
+        where, what, width = _placed(g, self.dim)
         with open(os.path.join(out_dir, f"gauge_{g.name}_points.csv"), "w") as f:
-            f.write(",".join(["point", *axes[:where.shape[1]]]) + "\n")
-            for i, row in enumerate(where):
-                f.write(",".join([f"{prefix}{i}", *(repr(float(c)) for c in row)]) + "\n")
+            f.write(",".join(["point", *"xyz"[:width]]) + "\n")
+            for i, row in enumerate(np.asarray(where, float)):
+                f.write(",".join([f"{what[0]}{i}", *(repr(float(c)) for c in row)]) + "\n")
 
     def sample(self, sim):
         """{gauge name: {column: value}} of every gauge for the current state (collective)."""
