@@ -44,9 +44,6 @@ PARAMS = {
     **mu_i_params("004_ Fig. 6 also uses 0.05", "explicit"),
     **side_wall_params(),
     "density_reinit": density_reinit_param("none"),
-    "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
-                           "(001_ Eqs. 9-11) keeps a configuration for 0.25 h/|v|, over which the sheared layer "
-                           "dilates and runs away (docs/VALIDATION.md)", choices=("dual", "single")),
     "t_end": Param(6.5, "s", "simulated end time", positive=True),
     "output_interval": Param(0.5, "s", "simulated time between frames", positive=True),
 }

@@ -47,8 +47,6 @@ def column_params(a, dp, m_0):
         "m_0": Param(m_0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
         **mu_i_params("004_ uses none for the collapses", "implicit"),
         "density_reinit": density_reinit_param("none", why="004_ evolves the density by Eq. 26"),
-        "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; "
-                               "dual: 001_ Eqs. 9-11", choices=("dual", "single")),
         "diagnostics_every": Param(100, "steps", "steps between rows of diagnostics.csv", positive=True),
     }
 

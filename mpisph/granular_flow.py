@@ -35,8 +35,8 @@ def mach_compressibility(rho0, speed_squared, mach=MACH):
 
 
 def mu_i_params(alpha_doc, viscous_step):
-    """Typed parameters of the mu_i scheme's options (physics/mu_i.py), with the case's word on
-    alpha and its default viscous step."""
+    """Typed parameters of the mu_i scheme's options (physics/mu_i.py) and of 004_'s single time step
+    (Eq. 39), with the case's word on alpha and its default viscous step."""
     return {
         "alpha": Param(0.0, "-", f"artificial viscosity (Eq. 38; {alpha_doc})"),
         "beta_max": Param(1.5, "-", "cap of the Morris wall factor (Eq. 36)", positive=True),
@@ -63,6 +63,9 @@ def mu_i_params(alpha_doc, viscous_step):
         "viscous_tolerance": Param(TOLERANCE, "-", "where the implicit viscous kick's conjugate gradients stop: "
                                    "the RMS velocity residual over the case's reference speed "
                                    "(physics/implicit_viscosity.py)", positive=True),
+        "time_stepping": Param("single", "-", "single: every quantity at the current positions, as 004_; dual "
+                               "(001_ Eqs. 9-11) keeps a configuration for 0.25 h/|v|, over which a sheared layer "
+                               "dilates and runs away (docs/VALIDATION.md)", choices=("dual", "single")),
     }
 
 

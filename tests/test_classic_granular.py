@@ -8,6 +8,7 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.errors import InputError
+from mpisph.granular_flow import mu_i_params
 from mpisph.kernels import Kernel
 from mpisph.materials import DruckerPrager
 from mpisph.neighbours import neighbour_lists
@@ -236,3 +237,15 @@ def test_a_case_that_names_no_integrator_is_stepped_by_its_schemes(case_name, ov
     case = build_case(module, values)
     assert case.integrator is None
     assert make_parts(case, values).integrator.name == integrator
+
+
+@pytest.mark.parametrize("case_name", ["inclined_plane", "lube_collapse_2d"])
+def test_mu_i_cases_take_004s_single_time_step_from_the_schemes_parameters(case_name):
+    """004_ takes one time step of its Eq. 39: granular_flow.mu_i_params gives time_stepping=single to
+    every case that takes the scheme's options, where a case of one's own that took them got the
+    run parameters' dual criteria."""
+    assert mu_i_params("", "explicit")["time_stepping"].default == "single"
+    module = load_case_module(case_name)
+    values = resolve_params(module, {})
+    assert values["time_stepping"] == "single"
+    assert make_parts(build_case(module, values), values).criteria.single
