@@ -304,7 +304,8 @@ def run(args, comm):
                            else os.path.join("runs", Path(args.case).stem))  # a case file: runs/ its name
     progress = Progress(comm, quiet=args.quiet, baseline_bytes=baseline)
     stop = StopOnSignal()
-    sim = Simulation(comm, case, values, particles, parts, t=t, step=step, out_dir=out_dir,
+    sim = Simulation(comm, case, values, particles, parts, t=t, step=step,
+                     configurations=frame["configurations"] if restarted else 0, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
     if case.gauges:
         sim.gauges = GaugeRecorder(case, particles, comm)

@@ -118,8 +118,8 @@ RUN_PARAMS = {
                            "in its Tables 2 and 4)", bounds=(0.0, math.inf)),
     "rebalance_threshold": Param(0.1, "-", "rebalance when max/mean work per rank - 1 exceeds this "
                                  "(work: neighbour pairs)", positive=True),
-    "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv",
-                               positive=True),
+    "diagnostics_every": Param(10, "steps", "advection steps between rows of diagnostics.csv, counted from "
+                               "t = 0 across restarts", positive=True),
     "damping": Param(0.0, "1/s", "rate c of the velocity damping -c v that settles a body to rest before a "
                      "restart without it (forces.VelocityDamping); 0: none", bounds=(0.0, math.inf)),
 }

@@ -65,7 +65,7 @@ CELL_SORT_EVERY = 25  # configurations between re-sorting the owned particles by
 class Simulation:
     """One run of a case on the ranks of ``comm``."""
 
-    def __init__(self, comm, case, params, particles, parts, *, t=0.0, step=0,
+    def __init__(self, comm, case, params, particles, parts, *, t=0.0, step=0, configurations=0,
                  out_dir, diagnostics, progress, stop=None):
         self.comm = comm
         self.case = case
@@ -85,7 +85,8 @@ class Simulation:
                                         hi[case.slab_axis], self.support)
         self.halo = Halo(self.decomp, self.support, lo, hi, case.periodic)
         self.frame_index = regular_frame_number(t, params["output_interval"])
-        self.advection_steps = 0
+        self.advection_steps = 0  # of this process: the first cut, the cell sort
+        self.configurations = configurations  # advection steps since t = 0: diagnostics.csv's rows
         self.rebalances = 0  # new cuts after the first ones (diagnostics.csv)
         self.dt = 0.0  # the last step taken (cut to an output time at a frame)
         self.time_step = 0.0  # the last time-step limit, before such a cut (the progress lines')
@@ -231,8 +232,9 @@ class Simulation:
                 if not dt > 0.0:  # a limit proportional to the density (the viscous one) went <= 0
                     self._check()
             self.advection_steps += 1
+            self.configurations += 1
             frame_due = self.t >= t_next_frame
-            if frame_due or self.advection_steps % self.params["diagnostics_every"] == 0:
+            if frame_due or self.configurations % self.params["diagnostics_every"] == 0:
                 self._record()
             if frame_due:
                 self.frame_index = regular_frame_number(self.t, interval)
@@ -270,6 +272,6 @@ class Simulation:
         with self.timer("io"):
             path = frame_path(self.out_dir, self.frame_index)
             write_frame(path, self.comm, fields, time=self.t, step=self.step, dim=self.case.dim, params=self.params,
-                        symmetric=symmetric)
+                        symmetric=symmetric, configurations=self.configurations)
             if self.comm.rank == 0:
                 add_to_series(self.out_dir, path, self.t)

@@ -41,7 +41,7 @@ def make_fields(dim, n=50, n_walls=10, seed=0):
 
 def write(path, fields, dim, time=0.5, step=10):
     write_frame(str(path), COMM, fields, time=time, step=step, dim=dim,
-                params=PARAMS)
+                params=PARAMS, configurations=4)
 
 
 def expected(fields, walls):
@@ -58,13 +58,13 @@ def test_round_trip(tmp_path, dim, walls):
     path = frame_path(tmp_path, 3)
     write(path, fields, dim)
     got = read_frame(path, walls=walls)
-    assert got["t"] == 0.5 and got["step"] == 10 and got["dim"] == dim
+    assert got["t"] == 0.5 and got["step"] == 10 and got["configurations"] == 4 and got["dim"] == dim
     assert got["params"] == PARAMS
     for key, want in expected(fields, walls).items():
         assert got[key].dtype == want.dtype, key
         assert got[key].shape == want.shape, key
         assert got[key].tobytes() == want.tobytes(), key
-    assert set(got) == set(fields) | {"t", "step", "dim", "params"}
+    assert set(got) == set(fields) | {"t", "step", "configurations", "dim", "params"}
 
 
 def test_empty_frame(tmp_path):

@@ -231,8 +231,8 @@ def test_a_run_keeps_nothing_of_the_runs_before_it(runs, case):
 
 
 def stored_arrays(frame):
-    """{name: array} of a frame's particle arrays (read_frame adds t, step, dim and params)."""
-    return {k: a for k, a in frame.items() if k not in ("t", "step", "dim", "params")}
+    """{name: array} of a frame's particle arrays (read_frame adds t, step, configurations, dim and params)."""
+    return {k: a for k, a in frame.items() if k not in ("t", "step", "configurations", "dim", "params")}
 
 
 @pytest.mark.parametrize("case", list(CASES))

@@ -107,3 +107,25 @@ def test_a_case_file_runs_into_runs_and_its_name(tmp_path):
         r = mpisph(given, "--set", "nx=10", "--t-end", "0.01", "--output-interval", "0.01", "--quiet", cwd=tmp_path)
         assert r.returncode == 0, r.stderr
         assert times(tmp_path / "runs" / "my_vortex") == pytest.approx([0.0, 0.01])
+
+
+def test_a_restart_records_diagnostics_rows_at_the_steps_of_the_run_it_continues(tmp_path):
+    """diagnostics.csv's rows fall every diagnostics_every advection steps counted from t = 0, which
+    the frame carries to the restart: restarted from the frame at 0.1 s (its 39th advection step, not
+    a multiple of 10), the run writes the rows of the run never stopped, where a count from the
+    restart put them 39 steps apart from those."""
+    run = ["dam_break_2d", "--set", "dp=0.05", "--t-end", "0.3", "--output-interval", "0.1", "--quiet"]
+    r = mpisph(*run, "--out", "straight", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    restarted = tmp_path / "restarted"
+    restarted.mkdir()
+    for name in ("frame_00000.hdf", "frame_00001.hdf", "diagnostics.csv"):
+        (restarted / name).write_bytes((tmp_path / "straight" / name).read_bytes())
+    configurations = read_frame(restarted / "frame_00001.hdf")["configurations"]
+    assert configurations % 10 != 0  # the case's diagnostics_every
+    r = mpisph(*run, "--restart", restarted / "frame_00001.hdf", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    rows, straight = (read_diagnostics(d / "diagnostics.csv") for d in (restarted, tmp_path / "straight"))
+    assert np.sum(rows["t"] > 0.1 + 1e-9) >= 5
+    np.testing.assert_array_equal(rows["step"], straight["step"])
+    np.testing.assert_array_equal(rows["t"], straight["t"])

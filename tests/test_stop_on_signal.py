@@ -70,14 +70,16 @@ def test_a_signal_stops_the_run_with_a_frame_to_restart_from(tmp_path, how):
 
 def test_a_run_stopped_by_a_signal_and_restarted_ends_with_the_bits_of_an_uninterrupted_one(tmp_path):
     """SIGTERM at whatever step the run has reached, a restart from the frame it writes, and the
-    run without the stop, both to a little past that step: the same particles, bit for bit."""
+    run without the stop, both to a little past that step: the same particles, bit for bit, and
+    diagnostics.csv's rows at the same times with the same energies (tests/test_restart_directory.py
+    restarts from a frame whose count of advection steps is not a multiple of the rows')."""
     stopped = tmp_path / "stopped"
     proc = _start([sys.executable], stopped)
     code, stdout, stderr = signal_when_running(proc, stopped, signal.SIGTERM)
     assert code == 0, stderr
     frame = list_frames(stopped)[-1]
     state = read_frame(frame)
-    t_end = repr(state["t"] + 0.02)
+    t_end = repr(state["t"] + 0.1)
     r = mpisph(["dam_break_2d", "--restart", frame, "--t-end", t_end, "--out", stopped, "--quiet"], ranks=2)
     assert r.returncode == 0, r.stderr
     straight = tmp_path / "straight"
@@ -87,6 +89,11 @@ def test_a_run_stopped_by_a_signal_and_restarted_ends_with_the_bits_of_an_uninte
     assert a["step"] == b["step"] > state["step"] and a["t"] == b["t"]
     for name in ("gid", "x", "v", "rho", "p"):
         np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+    rows, straight_rows = read_diagnostics(stopped / "diagnostics.csv"), read_diagnostics(straight / "diagnostics.csv")
+    assert np.sum(rows["t"] > state["t"]) >= 3  # rows between the restart and the end's frame
+    np.testing.assert_array_equal(rows["t"], straight_rows["t"])
+    np.testing.assert_array_equal(rows["step"], straight_rows["step"])
+    np.testing.assert_allclose(rows["kinetic_energy"], straight_rows["kinetic_energy"], rtol=1e-12)
 
 
 def test_a_run_killed_while_writing_a_frame_leaves_only_complete_frames(tmp_path):

@@ -24,8 +24,9 @@ the reader only by the extension ``.hdf``, which later releases still accept:
 * ``FieldData/time`` and ``FieldData/step``.
 
 The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
-``format_version``, ``time``, ``step``, ``dim``, ``n_total``, ``params``
-(JSON) and, written last, ``complete`` = 1.  The file is written as
+``format_version``, ``time``, ``step``, ``configurations`` (the run's advection steps
+since t = 0, which a restart goes on counting; frames written before it was stored
+read 0), ``dim``, ``n_total``, ``params`` (JSON) and, written last, ``complete`` = 1.  The file is written as
 ``<path>.part`` and renamed once every rank has closed it.  Frames of format
 versions 1-2 (PolyData, ``frame_NNNNN.vtkhdf``) are still read: restarts,
 ``read_frame`` and ``list_frames`` take them.
@@ -156,19 +157,20 @@ def _write_cells(vtk, comm, n_total, off, n, dxpl):
     _put(vtk.create_dataset("Types", (n_total,), np.uint8), off, np.full(n, VTK_VERTEX, np.uint8), dxpl)
 
 
-def write_frame(path, comm, fields, *, time, step, dim, params, symmetric=()):
+def write_frame(path, comm, fields, *, time, step, dim, params, symmetric=(), configurations=0):
     """Write one frame collectively over ``comm``.
 
     ``fields`` maps names to this rank's local arrays (owned particles only,
     possibly zero rows); it must contain ``x`` (n, dim), ``gid`` and
     ``kind``.  ``symmetric`` names the fields that hold a symmetric dim x dim
     tensor packed (tensors.py, a Field of shape ``("sym",)``).  ``time``,
-    ``step``, ``dim`` and ``params`` (JSON-able dict) are taken from rank 0.
+    ``step``, ``configurations``, ``dim`` and ``params`` (JSON-able dict) are taken
+    from rank 0.
     """
     _check_fields(comm, fields, dim)
-    meta = comm.bcast((float(time), int(step), int(dim),
+    meta = comm.bcast((float(time), int(step), int(configurations), int(dim),
                        json.dumps(params, sort_keys=True)), root=0)
-    time, step, dim, params_json = meta
+    time, step, configurations, dim, params_json = meta
     n = len(fields["x"])
     off = comm.exscan(n) or 0  # None on rank 0
     n_total = comm.allreduce(n)
@@ -182,7 +184,8 @@ def write_frame(path, comm, fields, *, time, step, dim, params, symmetric=()):
         info.attrs["format"] = FORMAT
         info.attrs["format_version"] = FORMAT_VERSION
         info.attrs["time"] = np.float64(time)
-        for key, value in (("step", step), ("dim", dim), ("n_total", n_total)):
+        for key, value in (("step", step), ("configurations", configurations), ("dim", dim),
+                           ("n_total", n_total)):
             info.attrs[key] = np.int64(value)
         info.attrs["params"] = params_json
 
@@ -290,7 +293,7 @@ def frame_rows(path):
 
 def read_rows(path, start=0, stop=None):
     """The stored rows [start, stop) of a frame, in file order: every field in its original shape
-    and dtype (``x`` is (n, dim)), plus ``t``, ``step``, ``dim`` and ``params``."""
+    and dtype (``x`` is (n, dim)), plus ``t``, ``step``, ``configurations``, ``dim`` and ``params``."""
     check_frame(path)
     with _open(path) as f:
         info = f["mpisph"].attrs
@@ -305,6 +308,7 @@ def read_rows(path, start=0, stop=None):
                 a = a[:, columns].reshape((len(a),) + shape)
             out[name] = a.astype(np.dtype(d.attrs["mpisph_dtype"]), copy=False)
         out.update({"t": float(info["time"]), "step": int(info["step"]),
+                    "configurations": int(info.get("configurations", 0)),
                     "dim": dim, "params": json.loads(info["params"])})
     return out
 
