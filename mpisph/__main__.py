@@ -308,7 +308,7 @@ def run(args, comm):
                      configurations=frame["configurations"] if restarted else 0, out_dir=out_dir,
                      diagnostics=None, progress=progress, stop=stop)
     if case.gauges:
-        sim.gauges = GaugeRecorder(case, particles, comm)
+        sim.gauges = GaugeRecorder(case, particles, comm, parts.scheme.derived)
     if not restarted:
         sim.configure_start()  # refuses overlapping bodies and walls before anything is written
     own_interval = restarted and values["output_interval"] == written["output_interval"]

@@ -36,7 +36,8 @@ from .particles import MOVING
 
 @dataclass
 class Gauge:
-    """Fields sampled at ``points`` (n, dim): the name of a particle field each (``v``, ``p``, ``rho``...)."""
+    """Fields sampled at ``points`` (n, dim): the name of a field each that the frames hold (``v``, ``p``,
+    ``rho``..., and the scheme's output fields such as ``stress`` and ``von_mises``)."""
 
     name: str
     points: np.ndarray
@@ -171,15 +172,17 @@ class GaugeRecorder:
     continues them), and beside each the positions of its points or stations
     (``gauge_<name>_points.csv``: a row per point, p0, p1, ... in the order of the columns)."""
 
-    def __init__(self, case, particles, comm):
-        """The columns of every gauge; InputError for a field the particles do not have (before
-        anything is written: ``open`` writes the files)."""
+    def __init__(self, case, particles, comm, derived=()):
+        """The columns of every gauge; InputError for a field that neither the particles nor the
+        scheme's output fields ``derived`` (Scheme.derived) have (before anything is written: ``open``
+        writes the files)."""
         self.comm = comm
         self.gauges = list(case.gauges)
         self.files = []
         self.columns = []
         self.dim = dim = case.dim
-        fields = {f.name: f for f in particles.fields}
+        fields = {f.name: f for f in (*particles.fields, *derived)}
+        self.derived = {f.name for f in derived} & {f for g in self.gauges if isinstance(g, Gauge) for f in g.fields}
         for g in self.gauges:
             if isinstance(g, Gauge):
                 missing = [f for f in g.fields if f not in fields]
@@ -210,9 +213,12 @@ class GaugeRecorder:
     def sample(self, sim):
         """{gauge name: {column: value}} of every gauge for the current state (collective)."""
         pa, n = sim.particles, sim.particles.n_owned
+        arrays = pa.arrays
+        if self.derived:
+            arrays = {**arrays, **sim.parts.scheme.derived_fields(pa, n)}
         out = {}
         for g, f in zip(self.gauges, self.files):
-            values = self._sample(sim, g, pa, n) if isinstance(g, Gauge) else self._tops(sim, g, pa, n)
+            values = self._sample(sim, g, pa, n, arrays) if isinstance(g, Gauge) else self._tops(sim, g, pa, n)
             out[g.name] = dict(zip(f.columns[1:], values))
         return out
 
@@ -221,9 +227,9 @@ class GaugeRecorder:
         for g, f in zip(self.gauges, self.files):
             f.record({"t": t, **samples[g.name]})
 
-    def _sample(self, sim, g, pa, n):
+    def _sample(self, sim, g, pa, n, arrays):
         points = np.ascontiguousarray(np.asarray(g.points, float).reshape(-1, pa.dim))
-        values = np.column_stack([pa.arrays[f][:n].reshape(n, -1) for f in g.fields])
+        values = np.column_stack([arrays[f][:n].reshape(n, -1) for f in g.fields])
         local = np.zeros((len(points), 1 + values.shape[1]))
         kernel = sim.parts.kernel
         interpolation_sums(n, pa.kind, pa.x, pa.mass, pa.rho, np.ascontiguousarray(values), points, kernel.params,

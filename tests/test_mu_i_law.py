@@ -11,12 +11,13 @@ from mpisph.errors import InputError
 from mpisph.kernels import Kernel
 from mpisph.materials import MuIGranular
 from mpisph.physics.mu_i import momentum, pair_term_factors
+from mpisph.physics.mu_i_stress import bulk_factor, granular_stress
 from mpisph.physics.viscous_stress import strain_rate, stress_divergence, viscous_force_tensor
 from mpisph.physics.mu_i_law import (MEAN_ARITHMETIC, MEAN_HARMONIC, MEAN_SECANT, friction, grain_density_ratio,
                                      pair_viscosity, regularised_shear_rates, regularised_viscosity,
                                      residual_viscosity)
 from mpisph.correction import correction_matrix
-from mpisph.tensors import size
+from mpisph.tensors import SYM3, size
 
 from lattice import lattice
 
@@ -323,18 +324,9 @@ def test_deviatoric_pair_term_is_the_divergence_of_2_eta_dev_eps(dim):
         np.testing.assert_allclose(deviatoric[:, 1] / target, lattice_share(dim, 1.3), rtol=1e-9)
     np.testing.assert_allclose(eq_27[:, 1], 2 * 2.0 / 1000.0 * lattice_share(dim, 1.3), rtol=1e-9)  # 2 eta / rho
 
-    def general(x):
-        v = np.zeros_like(x)
-        v[:, 0] = x[:, 1] ** 2 + 0.5 * x[:, 0] * x[:, 1] + 0.3 * x[:, 0] ** 2
-        v[:, 1] = -0.2 * x[:, 0] ** 2 + 0.4 * x[:, 0] * x[:, 1] + 0.6 * x[:, 1] ** 2
-        if dim == 3:
-            v[:, 2] = 0.7 * x[:, 0] * x[:, 2] - 0.3 * x[:, 1] ** 2
-            v[:, 0] += 0.4 * x[:, 2] ** 2 + 0.2 * x[:, 1] * x[:, 2]
-        return v
-
     lap, grad_div = {2: ([2.6, 0.8], [1.0, 1.7]), 3: ([3.4, 0.8, -0.6], [1.7, 1.7, 0.0])}[dim]
     lap, grad_div = np.array(lap) * 2.0 / 1000.0, np.array(grad_div) * 2.0 / 1000.0  # times eta / rho
-    _, deviatoric, eq_27 = viscous_divergences(dim, 3.0, general)
+    _, deviatoric, eq_27 = viscous_divergences(dim, 3.0, quadratic_velocity)
     scale = np.abs(lap).max()
     np.testing.assert_allclose(deviatoric, np.broadcast_to(lap + (1.0 - 2.0 / dim) * grad_div, deviatoric.shape),
                                atol=0.01 * scale)
@@ -392,3 +384,67 @@ def test_pair_viscosity_at_the_free_surface_and_next_to_grains_at_rest():
     for mean in (MEAN_HARMONIC, MEAN_ARITHMETIC, MEAN_SECANT):
         assert pair_viscosity(3.0, 2.0, 2.0, 1.0, 4.0, mean) == pytest.approx(6.0, rel=1e-15)
     assert pair_viscosity(1.0, 2.0, 4.0, 0.0, 0.0, MEAN_SECANT) == 3.0  # neither strained: arithmetic
+
+
+def frame_stress_and_force(dim, corrected, deviatoric, alpha):
+    """(x, sigma, rho dv/dt) on the inner particles of a lattice under ``quadratic_velocity``: the
+    frames' stress (physics/mu_i_stress.py, zero pressure) and the force density of the viscous term
+    it stands for, eta = 2 Pa s uniform (or none, where ``alpha`` > 0: Eq. 38's term alone), the
+    strain rate corrected as the scheme takes it. The corrected stress is exact at the papers'
+    h = 1.3 dp; the pair terms tend to their limits as the kernel is resolved, here at h = 3 dp."""
+    x, kind, start, nbr, k, inner = lattice(dim, 1.3 if corrected else 3.0)
+    n = len(x)
+    rho, zeros, normal = np.full(n, 1000.0), np.zeros(n), np.zeros((n, dim))
+    eta = np.full(n, 0.0 if alpha > 0 else 2.0)
+    mass, v, c0 = rho * 0.01**dim, quadratic_velocity(x), 20.0
+    B = np.zeros((n, size(dim)) if corrected else (0, 1))
+    if corrected:
+        correction_matrix(n, start, nbr, x, mass, rho, kind, k.params, B)
+    strain = np.zeros((n, size(dim)))
+    strain_rate(n, start, nbr, x, v, rho, mass, kind, normal, zeros, 1.5, B, k.params, strain, np.zeros(n))
+    acc = np.zeros((n, dim))
+    if corrected:
+        T = np.zeros((n, dim, dim))
+        viscous_force_tensor(n, kind, strain, eta, B, deviatoric, T)
+        stress_divergence(n, start, nbr, x, rho, T, mass, kind, normal, k.params, acc)
+    else:
+        momentum(n, start, nbr, x, v, rho, zeros, eta, zeros, mass, kind, normal, zeros, 1.5, alpha, c0, False,
+                 *pair_term_factors(dim, deviatoric), MEAN_HARMONIC, k.params, acc)
+    stress = np.zeros((n, 6))
+    granular_stress(n, kind, zeros, rho, strain, eta, bulk_factor(dim, corrected, deviatoric),
+                    references.pair_viscosity_of_alpha(alpha, k.h, c0, dim), stress)
+    return x[inner], stress[inner], rho[inner, None] * acc[inner]
+
+
+def quadratic_velocity(x):
+    """A quadratic velocity field with shear, rotation and a varying divergence."""
+    v = np.zeros_like(x)
+    v[:, 0] = x[:, 1] ** 2 + 0.5 * x[:, 0] * x[:, 1] + 0.3 * x[:, 0] ** 2
+    v[:, 1] = -0.2 * x[:, 0] ** 2 + 0.4 * x[:, 0] * x[:, 1] + 0.6 * x[:, 1] ** 2
+    if x.shape[1] == 3:
+        v[:, 2] = 0.7 * x[:, 0] * x[:, 2] - 0.3 * x[:, 1] ** 2
+        v[:, 0] += 0.4 * x[:, 2] ** 2 + 0.2 * x[:, 1] * x[:, 2]
+    return v
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("corrected, deviatoric, alpha", [(True, False, 0.0), (True, True, 0.0),
+                                                           (False, False, 0.0), (False, True, 0.0),
+                                                           (False, False, 0.05)])
+def test_frames_stress_is_the_one_the_viscous_term_takes_the_divergence_of(dim, corrected, deviatoric, alpha):
+    """The stress a mu_i frame holds (mu_i_stress.py) is, for each viscous form and stress and for
+    Eq. 38's artificial viscosity, the stress whose divergence the momentum sum gives: on a quadratic
+    velocity the stress is linear in x, and its divergence from a least-squares fit over the inner
+    particles is rho dv/dt, to round-off for the corrected stress and to 1 % for the pair terms at
+    h = 3 dp; in 2D sigma_zz is -p and there is no out-of-plane shear."""
+    x, stress, force = frame_stress_and_force(dim, corrected, deviatoric, alpha)
+    basis = np.column_stack([np.ones(len(x)), x])
+    coefficients = np.linalg.lstsq(basis, stress, rcond=None)[0]
+    assert np.abs(basis @ coefficients - stress).max() < 1e-6 * np.abs(stress).max()  # linear, as it must be
+    slopes = coefficients[1:]  # d sigma_c / d x_a, (dim, 6)
+    divergence = np.array([sum(slopes[b, SYM3[a, b]] for b in range(dim)) for a in range(dim)])
+    scale = np.abs(force).max()
+    assert scale > 0
+    np.testing.assert_allclose(force, np.broadcast_to(divergence, force.shape), atol=(1e-9 if corrected else 0.01) * scale)
+    if dim == 2:
+        assert np.all(stress[:, [2, 4, 5]] == 0.0)  # zz = -p = 0 and no out-of-plane shear

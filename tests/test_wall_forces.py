@@ -1,7 +1,8 @@
 """Forces on named walls (mpisph/wall_forces.py): the force of a flowing mu(I) layer on its bed
 closes the momentum balance of the layer, d(P_x)/dt = M g sin(theta) - F_x, and carries its weight,
 F_y = -M g cos(theta), with the viscous step explicit and implicit (where the wall force sums the
-viscous term explicitly); the barrier load declared on the bed puts each row's force over the
+viscous term explicitly), as the normal stress of a gauge line across it (the frames' stress) does;
+the barrier load declared on the bed puts each row's force over the
 momentum flux its gauges measure in the same row; a wall name the case does not have is a
 one-line error, and so is a barrier load without its wall force or gauges. The still-water
 tank's force and moment are in tests/test_gauges.py."""
@@ -12,6 +13,7 @@ import numpy as np
 import pytest
 
 from mpisph.io.diagnostics import read_diagnostics
+from mpisph.io.frames import list_frames, read_frame
 from mpisph.barrier_load import depth_averaged
 from mpirun import mpisph
 
@@ -48,6 +50,14 @@ def test_bed_force_closes_the_momentum_balance_of_the_layer(tmp_path, step, rank
     np.testing.assert_allclose(d["alpha_bed"][moving],
                                d["force_bed_x"][moving] / (800.0 * v[moving] ** 2 * top["s0_top"][moving]),
                                rtol=1e-12)
+    # the line gauge's stress (the frames' stress of physics/mu_i_stress.py): at the end its normal
+    # stress across the layer grows with depth as the weight, rho g cos(theta), inside the material
+    inside = [i for i in points if abs(line[f"p{i}_kernel_sum"][-1] - 1.0) < 0.02]
+    y = np.loadtxt(tmp_path / "gauge_line_points.csv", delimiter=",", skiprows=1, usecols=2)[inside]
+    sigma_yy = np.array([line[f"p{i}_stress_yy"][-1] for i in inside])
+    rho = read_frame(list_frames(tmp_path)[-1])["rho"].mean()
+    assert len(inside) >= 6
+    assert np.polyfit(y, sigma_yy, 1)[0] == pytest.approx(rho * g * np.cos(theta), rel=0.02)
 
 
 def test_unknown_wall_is_an_input_error():

@@ -240,7 +240,7 @@ class ClassicGranular(MorrisWalls, Scheme):
                 f"Morris walls chi_max = {self.chi_max:g}; sound speed c0 = {self.material.c0:.4g} m/s",)
 
     def derived_fields(self, pa, n):
-        return solid_output_fields(pa, n)
+        return solid_output_fields(pa.stress, pa.v, n)
 
 
 class ClassicElastic(ClassicGranular):

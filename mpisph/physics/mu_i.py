@@ -167,6 +167,8 @@ from .implicit_viscosity import TOLERANCE, ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, grain_size, inertial_number, pair_viscosity,
                        regularised_viscosity)
 from .kernel_mean import kernel_mean, rate_modulus
+from .mu_i_stress import granular_stress_of
+from .solid import SOLID_OUTPUT_FIELDS, STRESS, solid_output_fields
 from .viscous_stress import stress_divergence, strain_rate, viscous_force_tensor
 from .walls import WALL_DISTANCE, MorrisWalls, along_wall_normal, morris_relative_velocity, require_wall_distances
 
@@ -428,7 +430,8 @@ class MuIScheme(MorrisWalls, Scheme):
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
     derived = (Field("inertial_number", (), np.float64, "inertial number I from the volume fraction (004_ Eq. 8) [-]"),
-               Field("friction", (), np.float64, "friction coefficient mu(I) (004_ Eq. 7) [-]"))
+               Field("friction", (), np.float64, "friction coefficient mu(I) (004_ Eq. 7) [-]"),
+               STRESS, *SOLID_OUTPUT_FIELDS)  # the stress of mu_i_stress.py
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
                "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric",
                "law_pressure": "state", "law_strain_rate": "own", "viscous_tolerance": TOLERANCE}
@@ -575,4 +578,5 @@ class MuIScheme(MorrisWalls, Scheme):
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)
         inertial_number_and_friction(n, pa.rho[:n], pa.rho_s[:n], self.params, I, mu)
-        return {"inertial_number": I, "friction": mu}
+        stress = granular_stress_of(self, pa, n)
+        return {"inertial_number": I, "friction": mu, "stress": stress, **solid_output_fields(stress, pa.v, n)}

@@ -274,14 +274,14 @@ SOLID_OUTPUT_FIELDS = (
 )
 
 
-def solid_output_fields(pa, n):
-    """Output-only fields of the owned particles of a scheme with a stress: von Mises, vertical
-    stress, speed (``SOLID_OUTPUT_FIELDS``)."""
+def solid_output_fields(stress, v, n):
+    """Output-only fields of the particles [0, n) of a packed stress (n, 6) and velocity: von Mises,
+    vertical stress, speed (``SOLID_OUTPUT_FIELDS``)."""
     von_mises = np.empty(n)
     speed = np.empty(n)
-    output_invariants(n, pa.stress, pa.v, von_mises, speed)
-    vertical = pa.dim - 1
-    return {"von_mises": von_mises, "vertical_stress": pa.stress[:n, vertical].copy(), "speed": speed}
+    output_invariants(n, stress, v, von_mises, speed)
+    vertical = v.shape[1] - 1
+    return {"von_mises": von_mises, "vertical_stress": stress[:n, vertical].copy(), "speed": speed}
 
 
 class RiemannStress(ForceTerm):
@@ -367,4 +367,4 @@ class SolidScheme(Scheme):
                 ctx.kernel.params)
 
     def derived_fields(self, pa, n):
-        return solid_output_fields(pa, n)
+        return solid_output_fields(pa.stress, pa.v, n)
