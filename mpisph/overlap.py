@@ -1,4 +1,5 @@
-"""Bodies placed where they cannot start: behind a wall's surface, or on another particle.
+"""Bodies placed where they cannot start: behind a wall's surface, or on another particle; and
+walls too thin to hold them.
 
 A wall particle j stands ``wall_distance`` d_j behind the wall's surface along its inward normal
 n_j (dp/2 for the first layer, assumed where the wall declares no distance), so a material
@@ -10,6 +11,14 @@ behind that surface as j sees it: -dp/2 or less for a body filled dp/2 in front 
 shipped case is, and above 0 for a body that reaches into the wall (or a wall whose normals point
 away from the material). Only wall particles nearer than dp to i are asked, so that a wall's far
 layers and other walls' particles do not judge it.
+
+A wall is as thick, behind a particle j of its surface (no wall particle straight in front of
+it, less than dp/2 off j's normal line), as dp plus the depth behind j of the deepest wall
+particle k within the kernel's support, (x_j - x_k) . n_j: dp for a wall of one layer, and at an
+edge or a corner the depth along j's slanted normal. A material particle at the surface sees wall particles out to the support's reach,
+support_layers of them on a lattice; with fewer the wall pushes back on a part of the kernel only,
+and a fast flow passes through it (a barrier of one layer at dp = 0.1 m let soil into it on the
+coarse flume). Other walls' particles count: a floor under a wall's foot fills its support too.
 """
 
 import math
@@ -18,9 +27,12 @@ import numpy as np
 from numba import njit
 
 from .errors import InputError
-from .particles import is_wall
+from .geometry import support_layers
+from .neighbours import neighbour_lists
+from .particles import WALL, WALL_SLIP, is_wall
 
 DEPTH_REFUSED = 0.25  # in dp: a body particle deeper than this behind a wall's surface is refused
+THIN_SLACK = 0.5  # in dp: a wall thinner than its layers' due thickness less this is warned of
 
 
 @njit(cache=True)
@@ -75,3 +87,48 @@ def check_start(comm, pa, start, nbr, xc, dp, coincident, name_of):
         a, b, pos = same[0]
         raise InputError(f"particles {a} of {name_of(a)!r} and {b} of {name_of(b)!r} start at the same place, "
                          f"{pos}: two bodies, or a body and a wall, overlap")
+
+
+@njit(cache=True)
+def wall_thickness(n, start, nbr, x, normal, dp, thickness):
+    """``thickness`` [0, n) of each wall particle on its wall's surface behind it (module docstring),
+    nan for the particles behind another; ``start``, ``nbr`` list the wall particles around each."""
+    dim = x.shape[1]
+    for i in range(n):
+        deepest, covered = 0.0, False
+        for s in range(start[i], start[i + 1]):
+            j = nbr[s]
+            r2, along = 0.0, 0.0
+            for a in range(dim):
+                d = x[i, a] - x[j, a]
+                r2 += d * d
+                along += d * normal[i, a]
+            deepest = max(deepest, along)
+            covered = covered or (along < -0.5 * dp and r2 - along * along < 0.25 * dp * dp)
+        thickness[i] = np.nan if covered else dp + deepest
+
+
+def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, name_of):
+    """A warning for each wall thinner than support_layers(h_factor) layers behind some of its surface
+    (collective; every rank's owned wall particles, with the ghosts around them)."""
+    walls = np.flatnonzero(np.isin(pa.kind[:pa.n], (WALL, WALL_SLIP)))  # the owned ones first, then the ghosts
+    owned = int(np.count_nonzero(walls < pa.n_owned))
+    x = np.ascontiguousarray(pa.x[walls])
+    start, nbr = neighbour_lists(x, pa.gid[walls], np.zeros(len(walls), np.int8), owned, support, origin)
+    thickness = np.empty(owned)
+    wall_thickness(owned, start, nbr, x, pa.normal[walls], dp, thickness)
+    layers = support_layers(h_factor)
+    thin = np.flatnonzero(thickness < (layers - THIN_SLACK) * dp)
+    local = {}
+    for k in thin:
+        name = name_of(int(pa.gid[walls[k]]))
+        count, least = local.get(name, (0, np.inf))
+        local[name] = (count + 1, min(least, float(thickness[k])))
+    found = {}
+    for part in comm.allgather(local):
+        for name, (count, least) in part.items():
+            total, smallest = found.get(name, (0, np.inf))
+            found[name] = (total + count, min(smallest, least))
+    return [f"wall {name!r} is {least / dp:.2g} dp thick behind {count} of its surface particles, where the "
+            f"kernel reaches {support / dp:.2g} dp: material can pass through it; give it {layers} layers "
+            "(a thicker wall or a smaller dp)" for name, (count, least) in sorted(found.items())]
