@@ -19,13 +19,19 @@ T could slide only if rho g L W T (sin 50 - cos 50 tan 25) > c L (W + 2 T), i.e.
 (W + 2 T) with W = 1 m: never, however deep. Every wall's lattice runs along its own floor: the
 chute's along the slope (so are the soil's particles), the run-out's and the barrier's level.
 
-Recorded: the force and moment of the soil on the barrier (diagnostics.csv, about the middle of
-its foot), the front (distance along x from the chute's top), the flow top along the centre line
-upstream of the barrier (gauge_depth.csv), and the velocity on a vertical line 0.4 m upstream of
-the barrier (gauge_approach.csv) with the flow top over it (gauge_approach_top.csv), from which
-diagnostics.csv gets the approach speed and depth and the dynamic pressure coefficient
-alpha = F / (rho v^2 h w), w the flume's width, rho the soil's rho0 (barrier_load.py;
-scripts/production.py plots them).
+Recorded: the force and moment of the soil on the barrier (diagnostics.csv, the moment about the
+middle of its upstream foot, x = the barrier's upstream face, z = its foot; about another point r,
+M_r = M + (r_foot - r) x F, the downstream toe's r_foot - r = (-0.12, 0, 0) m), the front
+(distance along x from the chute's top), the flow top along the centre line upstream of the barrier
+(gauge_depth.csv), and the velocity on a vertical line 0.4 m upstream of the barrier
+(gauge_approach.csv) with the flow top over it (gauge_approach_top.csv), from which diagnostics.csv
+gets the approach speed v and depth h (over the run-out's floor, z = 0) and the dynamic pressure
+coefficient alpha = F / (rho v^2 h w) of the same row, w the barrier's width, rho the soil's rho0
+(barrier_load.py). After the impact the approach line stands in the deposit or its backwave, where
+v is small and alpha large: the impact's alpha is the peak force over the flux rho v^2 h w of the
+flow that arrives (scripts/production.py plots both and docs/PRODUCTION_3D.md quotes it). A geometry
+of one's own (scripts/make_flume_stl.py) must keep the run-out's floor at z = 0 and the barrier on
+it, downstream of the foot (x > 0).
 """
 
 from pathlib import Path
@@ -34,6 +40,7 @@ import numpy as np
 
 from mpisph.barrier_load import BarrierLoad
 from mpisph.case import Body, Case, Front, Param, Wall, limiter_param
+from mpisph.errors import InputError
 from mpisph.gauges import Gauge, SurfaceGauge
 from mpisph.geometry import support_layers
 from mpisph.lattice import Frame
@@ -85,6 +92,10 @@ def setup(p):
     lo, hi = corners.min(axis=0) - (layers + 1) * p.dp, corners.max(axis=0) + (layers + 1) * p.dp
     soil_lo, soil_hi = soil.triangles.reshape(-1, 3).min(axis=0), soil.triangles.reshape(-1, 3).max(axis=0)
     b_lo, b_hi = barrier.triangles.reshape(-1, 3).min(axis=0), barrier.triangles.reshape(-1, 3).max(axis=0)
+    if b_lo[0] <= APPROACH:
+        raise InputError(f"flume_3d: the barrier's upstream face is at x = {b_lo[0]:g} m, where the case needs it "
+                         f"on the run-out more than the approach gauge's {APPROACH:g} m downstream of the foot "
+                         "of the slope (x = 0)")
     middle = 0.5 * (b_lo[1] + b_hi[1])
     upstream = b_lo[0] - APPROACH
     along = np.arange(0.5 * p.dp, b_lo[0], max(2 * p.dp, b_lo[0] / 100))  # the run-out upstream of the barrier
@@ -105,7 +116,7 @@ def setup(p):
         front=Front(origin=(float(slope.origin[0]), 0.0, 0.0), axes=(0,)),  # x from the top corner of the chute floor
         wall_forces={"barrier": (b_lo[0], middle, b_lo[2])},
         barrier_loads=[BarrierLoad("barrier", "approach", "approach_top", width=b_hi[1] - b_lo[1], density=p.rho0,
-                                   bed=b_lo[2])],
+                                   bed=0.0)],
         gauges=[SurfaceGauge("depth", stations),
                 Gauge.line("approach", (upstream, middle, 0.5 * p.dp), (upstream, middle, 1.5), 31, fields=("v",)),
                 SurfaceGauge("approach_top", np.array([[upstream, middle]]))],

@@ -1,5 +1,5 @@
 """Bodies placed where they cannot start: behind a wall's surface, or on another particle; and
-walls too thin to hold them.
+walls too thin to hold them, or outside the domain, where no material reaches them.
 
 A wall particle j stands ``wall_distance`` d_j behind the wall's surface along its inward normal
 n_j (dp/2 for the first layer, assumed where the wall declares no distance), so a material
@@ -108,6 +108,33 @@ def wall_thickness(n, start, nbr, x, normal, dp, thickness):
         thickness[i] = np.nan if covered else dp + deepest
 
 
+def _by_wall(comm, local):
+    """{wall name: (count, extreme)} over ranks of each rank's {name: (count, extreme)}, extreme the
+    least value."""
+    found = {}
+    for part in comm.allgather(local):
+        for name, (count, least) in part.items():
+            total, smallest = found.get(name, (0, np.inf))
+            found[name] = (total + count, min(smallest, least))
+    return found
+
+
+def outside_domain_warnings(comm, pa, domain, periodic, dp, name_of):
+    """A warning for each wall with particles more than dp/2 outside the domain along a
+    non-periodic axis, where no material can reach them (collective; the owned particles)."""
+    lo, hi = (np.asarray(c, float) for c in domain)
+    x, n = pa.x[:pa.n_owned], pa.n_owned
+    beyond = np.maximum(lo - x, x - hi)[:, ~np.asarray(periodic, bool)].max(axis=1, initial=-np.inf)
+    local = {}
+    for k in np.flatnonzero(np.isin(pa.kind[:n], (WALL, WALL_SLIP)) & (beyond > 0.5 * dp)):
+        name = name_of(int(pa.gid[k]))
+        count, least = local.get(name, (0, np.inf))
+        local[name] = (count + 1, min(least, -float(beyond[k])))
+    box = " to ".join("(" + ", ".join(f"{c:g}" for c in corner) + ")" for corner in (lo, hi))
+    return [f"wall {name!r}: {count} of its particles lie outside the domain {box}, up to {-least:.3g} m, where "
+            "no material reaches them" for name, (count, least) in sorted(_by_wall(comm, local).items())]
+
+
 def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, name_of):
     """A warning for each wall thinner than support_layers(h_factor) layers behind some of its surface
     (collective; every rank's owned wall particles, with the ghosts around them)."""
@@ -124,11 +151,6 @@ def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, name_of):
         name = name_of(int(pa.gid[walls[k]]))
         count, least = local.get(name, (0, np.inf))
         local[name] = (count + 1, min(least, float(thickness[k])))
-    found = {}
-    for part in comm.allgather(local):
-        for name, (count, least) in part.items():
-            total, smallest = found.get(name, (0, np.inf))
-            found[name] = (total + count, min(smallest, least))
     return [f"wall {name!r} is {least / dp:.2g} dp thick behind {count} of its surface particles, where the "
             f"kernel reaches {support / dp:.2g} dp: material can pass through it; give it {layers} layers "
-            "(a thicker wall or a smaller dp)" for name, (count, least) in sorted(found.items())]
+            "(a thicker wall or a smaller dp)" for name, (count, least) in sorted(_by_wall(comm, local).items())]

@@ -53,7 +53,7 @@ from .io.frames import frame_path, regular_frame_number, write_frame
 from .io.series import add_to_series
 from .neighbours import cell_order, neighbour_lists
 from .observables import global_observables
-from .overlap import check_start, thin_wall_warnings
+from .overlap import check_start, outside_domain_warnings, thin_wall_warnings
 from .parallel.decomposition import SlabDecomposition, migrate, particle_work
 from .parallel.halo import Halo
 from .timing import PhaseTimer
@@ -99,11 +99,13 @@ class Simulation:
     def configure_start(self):
         """Steps 1-7 on the initial particles, which refuse (InputError, overlap.py) a body that
         starts behind a wall's surface or on another particle, and warn of walls too thin for the
-        kernel; the surface classes of the first frame. ``run`` takes it unless it was taken before,
+        kernel or outside the domain; the surface classes of the first frame. ``run`` takes it unless it was taken before,
         as __main__ does before it writes anything."""
         self._configure_geometry()
-        for line in thin_wall_warnings(self.comm, self.particles, self.case.dp, self.params["h_factor"], self.support,
-                                       self.case.domain[0], self.case.name_of):
+        case, pa = self.case, self.particles
+        for line in (*outside_domain_warnings(self.comm, pa, case.domain, case.periodic, case.dp, case.name_of),
+                     *thin_wall_warnings(self.comm, pa, case.dp, self.params["h_factor"], self.support,
+                                         case.domain[0], case.name_of)):
             self.progress.warn(line)
 
     def _configure(self):

@@ -191,6 +191,10 @@ if __name__ == "__main__":
     ap.add_argument("dimensions", nargs="*", metavar="NAME=VALUE",
                     help="a dimension of this file in metres or degrees, e.g. SOIL_DEPTH=1.2")
     a = ap.parse_args()
+    if "=" in str(a.dir):
+        ap.error(f"{a.dir} reads as a dimension: a variant needs its directory first, DIR NAME=VALUE ...")
+    if a.dimensions and a.dir.resolve() == OUT.resolve():
+        ap.error(f"a variant would write over the shipped surfaces in {OUT}: give it a directory of its own")
     for arg in a.dimensions:
         name, _, value = arg.partition("=")
         if name not in globals() or not isinstance(globals()[name], float):

@@ -326,6 +326,25 @@ def test_a_wall_thinner_than_the_kernel_is_warned_of(tmp_path, ranks):
                           "wall or a smaller dp)"] if warned else []), result.stderr
 
 
+def test_a_wall_outside_the_domain_is_warned_of(tmp_path):
+    """docs/examples/slope_2d.py with its domain's left edge moved 0.2 m right, into the back wall 3
+    layers deep (dp = 0.1 m): its outer layer, 63 particles 0.15 m out, is warned of, and the run goes
+    on; with the example's own domain nothing is."""
+    src = open(os.path.join(os.path.dirname(__file__), "..", "docs", "examples", "slope_2d.py")).read()
+    old = "        domain=((-margin, -margin), (length + margin, 2.0 * top)),\n"
+    assert old in src
+    (tmp_path / "cut.py").write_text(src.replace(old, old.replace("(-margin, -margin)", "(-margin + 0.2, -margin)")))
+    for case, warned in ((tmp_path / "cut.py", True), (os.path.join(os.path.dirname(__file__), "..", "docs",
+                                                                    "examples", "slope_2d.py"), False)):
+        result = mpisph([case, "--t-end", "0.001", "--output-interval", "0.001", "--out", tmp_path / "out",
+                         "--quiet"], timeout=120)
+        assert result.returncode == 0, result.stderr
+        lines = [line for line in stderr_lines(result.stderr) if "outside the domain" in line]
+        assert lines == (["mpisph: warning: wall 'back': 63 of its particles lie outside the domain (-0.1, -0.3) "
+                          "to (8.3, 6), up to 0.15 m, where no material reaches them"] if warned else []), \
+            result.stderr
+
+
 def test_a_run_started_by_its_file_restarts_by_its_name(tmp_path):
     """The frame names a case of cases/ by its name however the run named it (case.case_key), so
     `cases/elliptical_drop.py` (from the repository root) restarts as `elliptical_drop`; a case file

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
+from mpisph.errors import InputError
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
 from mpisph.meshes import read_surface
@@ -135,3 +136,32 @@ def test_the_deposit_stress_script_on_a_banked_block():
     forces = script.classical_forces(params, top, height, 1.0)
     assert forces["elastic at rest"] == pytest.approx(0.3 / 0.7 * gamma * (top**2 - 0.1**2) / 2)
     assert forces["active"] < forces["elastic at rest"] < forces["at rest"] < forces["passive"]
+
+
+def test_a_barrier_upstream_of_its_approach_gauge_is_one_line(tmp_path):
+    """flume_3d measures the approach 0.4 m upstream of the barrier, on the run-out (x > 0): a
+    geometry of one's own with the barrier 0.3 m from the foot is refused naming where it stands,
+    where the case failed on its own gauge's empty stations."""
+    script = make_flume_stl()
+    script.BARRIER_X = 0.3
+    script.write(tmp_path)
+    module = load_case_module("flume_3d")
+    with pytest.raises(InputError, match=r"^flume_3d: the barrier's upstream face is at x = 0.3 m, where the case "
+                                         r"needs it on the run-out more than the approach gauge's 0.4 m"):
+        build_case(module, resolve_params(module, {"geometry": str(tmp_path), "dp": "0.1"}))
+
+
+@pytest.mark.parametrize("args, words", [(["BARRIER_HEIGHT=0.5"], "reads as a dimension"),
+                                         (["cases/flume", "BARRIER_HEIGHT=0.5"], "would write over the shipped")])
+def test_a_flume_variant_without_a_directory_of_its_own_is_refused(args, words):
+    """make_flume_stl.py DIR NAME=VALUE: a dimension given first wrote into a directory named after it,
+    and a variant into cases/flume/ over the shipped surfaces; both are usage errors that write nothing."""
+    import subprocess
+    import sys
+
+    before = {p.name: p.read_bytes() for p in (ROOT / "cases" / "flume").glob("*.stl")}
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "make_flume_stl.py"), *args], cwd=ROOT,
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and words in r.stderr, r.stderr
+    assert not (ROOT / args[0]).exists() or args[0] == "cases/flume"
+    assert {p.name: p.read_bytes() for p in (ROOT / "cases" / "flume").glob("*.stl")} == before
