@@ -76,6 +76,8 @@ def cmd_info(name, overrides):
     import numpy as np
 
     from .case import all_params, build_case, describe, load_case_module, resolve_params
+    from .gauges import Gauge
+    from .observables import column_docs
     from .parts import make_parts
     module = load_case_module(name)
     values = resolve_params(module, overrides)
@@ -99,6 +101,18 @@ def cmd_info(name, overrides):
     for f in fields:
         shape = "x".join(map(str, f.shape_in(case.dim))) or "scalar"
         print(f"  {f.name:<{width}}  {np.dtype(f.dtype).name:<7} {shape:<6} {f.doc}")
+    print()
+    print("diagnostics.csv's columns" + (" (2D: per metre of depth)" if case.dim == 2 else "") + ":")
+    docs = column_docs(case, parts.scheme)
+    width = max(map(len, docs))
+    for column, doc in docs.items():
+        print(f"  {column:<{width}}  {doc}")
+    for g in case.gauges:
+        print(f"gauge_{g.name}.csv: " + (f"t, then for each of its {len(g.points)} points (gauge_{g.name}_points.csv) "
+                                          f"its kernel sum and {', '.join(g.fields)} (their units as above)"
+                                          if isinstance(g, Gauge) else
+                                          f"t, then the material's top over its {len(g.stations)} station"
+                                          f"{'s' * (len(g.stations) != 1)} (gauge_{g.name}_points.csv) [m]"))
 
 
 def cmd_frame_info(path):

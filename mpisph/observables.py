@@ -92,6 +92,48 @@ def observable_names(dim, scheme=None, probes=(), front=None, wall_forces=(), ba
 LOAD_COLUMNS = ["rank_particles_min", "rank_particles_max", "rank_pairs_min", "rank_pairs_max", "imbalance",
                 "rebalances"]
 
+_FIXED = {  # the meaning of a column of every run (a 2D run's sums and forces are per metre of depth)
+    "t": "simulated time [s]", "step": "time steps since t = 0 [-]",
+    "dt": "the row's last time step, cut at a frame to end on its time [s]", "n": "moving particles [-]",
+    "mass": "mass of the moving particles [kg]", "kinetic_energy": "their kinetic energy [J]",
+    "momentum": "their momentum [kg m/s]", "angular_momentum": "their angular momentum about the origin "
+    "[kg m^2/s]", "potential_energy": "their potential energy in gravity, zero at the origin [J]",
+    "strain_energy": "the elastic strain energy [J]",
+    "viscous_iterations": "conjugate-gradient iterations of the implicit viscous kick a step since the row before [-]",
+    "front": "the front: the farthest moving particle from the case's Front origin along its axes [m]",
+    "rank_particles_min": "fewest moving particles on a rank [-]", "rank_particles_max": "most on a rank [-]",
+    "rank_pairs_min": "fewest neighbour pairs on a rank [-]", "rank_pairs_max": "most on a rank [-]",
+    "imbalance": "most pairs on a rank over their mean, less 1, which rebalance_threshold bounds [-]",
+    "rebalances": "new cuts of the slabs since this process started [-]",
+}
+
+
+def column_docs(case, scheme):
+    """{column: meaning with its unit} of every column of the case's diagnostics.csv, in order (a 2D
+    run's sums and forces per metre of depth)."""
+    walls = {f"{kind}_{name}": (kind, name) for name in case.wall_forces for kind in ("force", "moment")}
+    loads = {f"{kind}_{load.wall}": kind for load in case.barrier_loads
+             for kind in ("approach_speed", "approach_depth", "alpha")}
+    load_docs = {"approach_speed": "depth-averaged speed on the barrier's approach gauge [m/s]",
+                 "approach_depth": "flow depth over the bed at the approach gauge [m]",
+                 "alpha": "dynamic pressure coefficient F / (rho v^2 h w) of this row's force, speed and depth [-]"}
+    docs = {}
+    for name in observable_names(case.dim, scheme, case.probes, case.front, wall_force_columns(case),
+                                 barrier_load_columns(case)):
+        stem = name.rsplit("_", 1)[0]
+        if name in _FIXED or stem in ("momentum", "angular_momentum"):
+            doc = _FIXED[name if name in _FIXED else stem]
+        elif stem in walls:
+            kind, wall = walls[stem]
+            doc = (f"force of the particles on wall {wall}, as it acts on the wall [N]" if kind == "force" else
+                   f"its moment about the point the case declares in wall_forces [N m]")
+        elif name in loads:
+            doc = load_docs[loads[name]]
+        else:  # a probe's displacement, NAME_ux ...
+            doc = f"displacement of probe {name[:-3]} from its start [m]"
+        docs[name] = doc
+    return docs
+
 
 def _load_balance(sim):
     """The values of LOAD_COLUMNS (module docstring)."""

@@ -300,7 +300,7 @@ def test_info_lists_the_arrays_of_a_frame(runs, case, capsys):
     says what its codes are."""
     cmd_info(case, {})
     out = capsys.readouterr().out
-    listed = out.split("frames hold for each particle", 1)[1].splitlines()[1:]
+    listed = out.split("frames hold for each particle", 1)[1].split("\n\n", 1)[0].splitlines()[1:]
     rows = {line.split()[0]: line.split()[1:] for line in listed if line.strip()}
     for name, a in stored_arrays(final_state(runs(case)[1])).items():
         dtype, shape, *doc = rows.pop(name)
@@ -308,6 +308,20 @@ def test_info_lists_the_arrays_of_a_frame(runs, case, capsys):
         assert shape == ("x".join(map(str, a.shape[1:])) or "scalar"), name
         assert doc and (doc[-1].endswith("]") or name in ("gid", "kind", "surface")), name
     assert not rows, f"info lists arrays the frame lacks: {sorted(rows)}"
+
+
+@pytest.mark.parametrize("case", ["dam_break_2d", "column_collapse_2d", "cube_failure_3d", "inclined_plane"])
+def test_info_lists_the_columns_of_the_diagnostics(runs, case, capsys):
+    """`python -m mpisph info CASE` names every column of the run's diagnostics.csv, in its order,
+    each with a meaning that ends in its unit."""
+    cmd_info(case, {})
+    out = capsys.readouterr().out
+    listed = out.split("diagnostics.csv's columns", 1)[1].splitlines()[1:]
+    rows = [line.split(None, 1) for line in listed if line.startswith("  ")]
+    with open(runs(case)[1] / "diagnostics.csv") as f:
+        header = f.readline().strip().split(",")
+    assert [name for name, _ in rows] == header
+    assert all(doc.endswith("]") for _, doc in rows), rows
 
 
 @pytest.mark.parametrize("case", RESTARTED)
