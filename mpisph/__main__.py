@@ -48,7 +48,8 @@ def _parser():
     add_times(p)
     p.add_argument("--out", help="output directory (default runs/CASE, or for a restart the frame's directory); "
                    "a run replaces the frames an earlier run wrote there after its start (with a warning when they "
-                   "are another case's), but a restart into its frame's directory that no --out names refuses to")
+                   "are another case's), but a restart into its frame's directory that no --out names refuses to "
+                   "replace frames after its time")
     p.add_argument("--restart", metavar="FRAME", help="continue from this frame file")
     p.add_argument("--quiet", action="store_true",
                    help="print neither the opening, progress nor closing lines (warnings and errors still print)")

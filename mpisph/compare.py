@@ -196,8 +196,7 @@ def measures(out, case):
     out["records"] = {
         **{f"{name}'s displacement at the end [m]": float(np.sqrt(sum(d[f"{name}_u{c}"][-1] ** 2 for c in axes)))
            for name in case.probes},
-        **{f"peak force on {name} [{'N' if case.dim == 3 else 'N/m'}]":
-           float(np.sqrt(sum(d[f"force_{name}_{c}"] ** 2 for c in axes)).max()) for name in case.wall_forces}}
+        **{key: value for name in case.wall_forces for key, value in _peak_force(d, name, axes, case.dim).items()}}
     return out
 
 
@@ -210,9 +209,20 @@ COLUMNS = ("Of each run's last frame: clustering, the share of particles nearer 
            "(mpisph/compare.py).")
 
 
+def _peak_force(d, name, axes, dim):
+    """{column: value} of the largest force on wall ``name`` in the diagnostics ``d``: its size |F|,
+    when, and its components then."""
+    size = np.sqrt(sum(d[f"force_{name}_{c}"] ** 2 for c in axes))
+    k = int(np.argmax(size))
+    unit = "N" if dim == 3 else "N/m"
+    return {f"peak force on {name}, its size [{unit}]": float(size[k]), f"{name}: at t [s]": float(d["t"][k]),
+            **{f"{name}: F_{c} then [{unit}]": float(d[f"force_{name}_{c}"][k]) for c in axes}}
+
+
 def records_table(case_name, rows, name="stabiliser"):
     """Markdown lines of what the case records of each run (its probes' displacement at the end, the
-    peak force on each of its named walls); none for a case that records neither."""
+    peak force on each of its named walls, when and its components then); none for a case that
+    records neither."""
     columns = next((list(row["records"]) for _, row in rows.values() if row is not None and row["records"]), [])
     if not columns:
         return []

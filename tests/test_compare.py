@@ -161,15 +161,16 @@ def test_compare_is_not_started_under_mpirun(tmp_path):
 
 def test_compare_tables_what_the_case_records(tmp_path):
     """A case with probes and wall forces (docs/examples/slope_2d.py): a second table gives each
-    run's probe displacements at the end and the peak force on each named wall, from its
-    diagnostics.csv; the weaker slope moves more."""
+    run's probe displacements at the end and the peak force on each named wall, when and its
+    components then, from its diagnostics.csv; the weaker slope moves more."""
     from mpisph.io.diagnostics import read_diagnostics
     r = compare(ROOT / "docs" / "examples" / "slope_2d.py", "--vary", "cohesion=2e3,4e3", "--set", "beta=60", "dp=0.2",
                 "t_end=0.3", "output_interval=0.3", "--out", tmp_path)
     assert r.returncode == 0, r.stderr
     text = (tmp_path / "compare.md").read_text()
     header = ("| cohesion (" + str(ROOT / "docs" / "examples" / "slope_2d.py") + ") | crest's displacement at the end [m] "
-              "| toe's displacement at the end [m] | peak force on back [N/m] |")
+              "| toe's displacement at the end [m] | peak force on back, its size [N/m] | back: at t [s] "
+              "| back: F_x then [N/m] | back: F_y then [N/m] |")
     assert header in text
     rows = text.split("What the case records (diagnostics.csv):")[1].splitlines()
     rows = [line for line in rows if line.startswith(("| 2e3 |", "| 4e3 |"))]
@@ -178,3 +179,10 @@ def test_compare_tables_what_the_case_records(tmp_path):
         d = read_diagnostics(tmp_path / value / "diagnostics.csv")
         assert crest[value] == pytest.approx(float(np.hypot(d["crest_ux"][-1], d["crest_uy"][-1])), rel=1e-3)
     assert crest["2e3"] > crest["4e3"]
+    cells = {line.split(" | ")[0][2:]: [float(c) for c in line.strip(" |").split(" | ")[1:]] for line in rows}
+    for value in ("2e3", "4e3"):
+        d = read_diagnostics(tmp_path / value / "diagnostics.csv")
+        size = np.hypot(d["force_back_x"], d["force_back_y"])
+        k = int(np.argmax(size))
+        assert cells[value][2:] == pytest.approx([size[k], d["t"][k], d["force_back_x"][k], d["force_back_y"][k]],
+                                                 rel=1e-3)
