@@ -15,10 +15,11 @@ layers and other walls' particles do not judge it.
 A wall is as thick, behind a particle j of its surface (no wall particle straight in front of
 it, less than dp/2 off j's normal line), as dp plus the depth behind j of the deepest wall
 particle k within the kernel's support, (x_j - x_k) . n_j: dp for a wall of one layer, and at an
-edge or a corner the depth along j's slanted normal. A material particle at the surface sees wall particles out to the support's reach,
-support_layers of them on a lattice; with fewer the wall pushes back on a part of the kernel only,
-and a fast flow passes through it (a barrier of one layer at dp = 0.1 m let soil into it on the
-coarse flume). Other walls' particles count: a floor under a wall's foot fills its support too.
+edge or a corner the depth along j's slanted normal. A material particle at the surface sees wall
+particles out to the support's reach, support_layers of them on a lattice; with fewer the wall
+pushes back on a part of the kernel only, and a fast flow passes through it (a barrier of one layer
+at dp = 0.1 m let soil into it on the coarse flume). Other walls' particles count: a floor under a
+wall's foot fills its support too.
 """
 
 import math
@@ -108,9 +109,13 @@ def wall_thickness(n, start, nbr, x, normal, dp, thickness):
         thickness[i] = np.nan if covered else dp + deepest
 
 
-def _by_wall(comm, local):
-    """{wall name: (count, extreme)} over ranks of each rank's {name: (count, extreme)}, extreme the
-    least value."""
+def _by_wall(comm, gids, values, id_ranges):
+    """{wall name: (count, least value)} over every rank of the particles ``gids`` with ``values``,
+    named by the bodies' and walls' global id ranges ``id_ranges`` (Case.id_ranges)."""
+    firsts = np.array([first for _, (first, _) in id_ranges])
+    owner = np.searchsorted(firsts, gids, side="right") - 1
+    local = {id_ranges[k][0]: (int(np.count_nonzero(owner == k)), float(values[owner == k].min()))
+             for k in np.unique(owner)}
     found = {}
     for part in comm.allgather(local):
         for name, (count, least) in part.items():
@@ -119,23 +124,20 @@ def _by_wall(comm, local):
     return found
 
 
-def outside_domain_warnings(comm, pa, domain, periodic, dp, name_of):
+def outside_domain_warnings(comm, pa, domain, periodic, dp, id_ranges):
     """A warning for each wall with particles more than dp/2 outside the domain along a
     non-periodic axis, where no material can reach them (collective; the owned particles)."""
     lo, hi = (np.asarray(c, float) for c in domain)
     x, n = pa.x[:pa.n_owned], pa.n_owned
     beyond = np.maximum(lo - x, x - hi)[:, ~np.asarray(periodic, bool)].max(axis=1, initial=-np.inf)
-    local = {}
-    for k in np.flatnonzero(np.isin(pa.kind[:n], (WALL, WALL_SLIP)) & (beyond > 0.5 * dp)):
-        name = name_of(int(pa.gid[k]))
-        count, least = local.get(name, (0, np.inf))
-        local[name] = (count + 1, min(least, -float(beyond[k])))
+    out = np.flatnonzero(np.isin(pa.kind[:n], (WALL, WALL_SLIP)) & (beyond > 0.5 * dp))
     box = " to ".join("(" + ", ".join(f"{c:g}" for c in corner) + ")" for corner in (lo, hi))
     return [f"wall {name!r}: {count} of its particles lie outside the domain {box}, up to {-least:.3g} m, where "
-            "no material reaches them" for name, (count, least) in sorted(_by_wall(comm, local).items())]
+            "no material reaches them"
+            for name, (count, least) in sorted(_by_wall(comm, pa.gid[out], -beyond[out], id_ranges).items())]
 
 
-def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, name_of):
+def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, id_ranges):
     """A warning for each wall thinner than support_layers(h_factor) layers behind some of its surface
     (collective; every rank's owned wall particles, with the ghosts around them)."""
     walls = np.flatnonzero(np.isin(pa.kind[:pa.n], (WALL, WALL_SLIP)))  # the owned ones first, then the ghosts
@@ -146,11 +148,7 @@ def thin_wall_warnings(comm, pa, dp, h_factor, support, origin, name_of):
     wall_thickness(owned, start, nbr, x, pa.normal[walls], dp, thickness)
     layers = support_layers(h_factor)
     thin = np.flatnonzero(thickness < (layers - THIN_SLACK) * dp)
-    local = {}
-    for k in thin:
-        name = name_of(int(pa.gid[walls[k]]))
-        count, least = local.get(name, (0, np.inf))
-        local[name] = (count + 1, min(least, float(thickness[k])))
+    found = _by_wall(comm, pa.gid[walls[thin]], thickness[thin], id_ranges)
     return [f"wall {name!r} is {least / dp:.2g} dp thick behind {count} of its surface particles, where the "
             f"kernel reaches {support / dp:.2g} dp: material can pass through it; give it {layers} layers "
-            "(a thicker wall or a smaller dp)" for name, (count, least) in sorted(_by_wall(comm, local).items())]
+            "(a thicker wall or a smaller dp)" for name, (count, least) in sorted(found.items())]

@@ -103,9 +103,9 @@ class Simulation:
         as __main__ does before it writes anything."""
         self._configure_geometry()
         case, pa = self.case, self.particles
-        for line in (*outside_domain_warnings(self.comm, pa, case.domain, case.periodic, case.dp, case.name_of),
+        for line in (*outside_domain_warnings(self.comm, pa, case.domain, case.periodic, case.dp, case.id_ranges),
                      *thin_wall_warnings(self.comm, pa, case.dp, self.params["h_factor"], self.support,
-                                         case.domain[0], case.name_of)):
+                                         case.domain[0], case.id_ranges)):
             self.progress.warn(line)
 
     def _configure(self):
