@@ -40,10 +40,15 @@ class BarrierLoad:
     bed: float = 0.0
 
 
+# each barrier load's diagnostics columns, <kind>_<wall>, with their meaning and unit
+LOAD_KINDS = {"approach_speed": "depth-averaged speed on the barrier's approach gauge [m/s]",
+              "approach_depth": "flow depth over the bed at the approach gauge [m]",
+              "alpha": "dynamic pressure coefficient F / (rho v^2 h w) of this row's force, speed and depth [-]"}
+
+
 def barrier_load_columns(case):
     """The diagnostics columns of the case's barrier loads."""
-    return [f"{kind}_{load.wall}" for load in case.barrier_loads
-            for kind in ("approach_speed", "approach_depth", "alpha")]
+    return [f"{kind}_{load.wall}" for load in case.barrier_loads for kind in LOAD_KINDS]
 
 
 def check_barrier_loads(case):

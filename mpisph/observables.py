@@ -20,7 +20,7 @@ import numpy as np
 from mpi4py import MPI
 from numba import njit
 
-from .barrier_load import barrier_load_columns, barrier_load_values
+from .barrier_load import LOAD_KINDS, barrier_load_columns, barrier_load_values
 from .particles import MOVING
 from .wall_forces import wall_force_columns, wall_force_values
 
@@ -112,11 +112,7 @@ def column_docs(case, scheme):
     """{column: meaning with its unit} of every column of the case's diagnostics.csv, in order (a 2D
     run's sums and forces per metre of depth)."""
     walls = {f"{kind}_{name}": (kind, name) for name in case.wall_forces for kind in ("force", "moment")}
-    loads = {f"{kind}_{load.wall}": kind for load in case.barrier_loads
-             for kind in ("approach_speed", "approach_depth", "alpha")}
-    load_docs = {"approach_speed": "depth-averaged speed on the barrier's approach gauge [m/s]",
-                 "approach_depth": "flow depth over the bed at the approach gauge [m]",
-                 "alpha": "dynamic pressure coefficient F / (rho v^2 h w) of this row's force, speed and depth [-]"}
+    loads = {f"{kind}_{load.wall}": doc for load in case.barrier_loads for kind, doc in LOAD_KINDS.items()}
     docs = {}
     for name in observable_names(case.dim, scheme, case.probes, case.front, wall_force_columns(case),
                                  barrier_load_columns(case)):
@@ -128,7 +124,7 @@ def column_docs(case, scheme):
             doc = (f"force of the particles on wall {wall}, as it acts on the wall [N]" if kind == "force" else
                    f"its moment about the point the case declares in wall_forces [N m]")
         elif name in loads:
-            doc = load_docs[loads[name]]
+            doc = loads[name]
         else:  # a probe's displacement, NAME_ux ...
             doc = f"displacement of probe {name[:-3]} from its start [m]"
         docs[name] = doc

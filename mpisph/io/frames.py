@@ -26,10 +26,10 @@ the reader only by the extension ``.hdf``, which later releases still accept:
 The top-level group ``/mpisph`` (ignored by VTK) carries ``format``,
 ``format_version``, ``time``, ``step``, ``configurations`` (the run's advection steps
 since t = 0, which a restart goes on counting; frames written before it was stored
-read 0), ``dim``, ``n_total``, ``params`` (JSON) and, written last, ``complete`` = 1.  The file is written as
-``<path>.part`` and renamed once every rank has closed it.  Frames of format
-versions 1-2 (PolyData, ``frame_NNNNN.vtkhdf``) are still read: restarts,
-``read_frame`` and ``list_frames`` take them.
+read 0), ``dim``, ``n_total``, ``params`` (JSON) and, written last, ``complete`` = 1.
+The file is written as ``<path>.part`` and renamed once every rank has closed it.
+Frames of format versions 1-2 (PolyData, ``frame_NNNNN.vtkhdf``) are still read:
+restarts, ``read_frame`` and ``list_frames`` take them.
 """
 
 import glob
