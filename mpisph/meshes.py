@@ -10,12 +10,15 @@ A mesh is read as oriented triangles (quads and polygons are split into fans). T
 - ``wall_layers``: dummy wall particles behind open (or closed) surfaces. A triangle's normal
   (right-hand rule over its vertices) points to the side the material is on; a lattice point
   is a wall particle of a part when it lies behind that part (on the side its nearest triangle
-  faces away from) and nearer than ``layers`` dp to it. The wall normal is the unit vector from
+  faces away from) and no farther than ``layers`` dp from it (to a rounding tolerance,
+  ``ON_SURFACE`` dp); a point on the surface is not. The wall normal is the unit vector from
   the particle to the nearest point of its part, as ``geometry.box_walls`` has it.
 
 Both place particles at the cell centres of a lattice in a ``Frame``: origin + axes @ ((i + 1/2)
 dp), so that a face lying on a lattice plane of the frame has its particles and its wall
-particles dp/2 from it on either side.
+particles dp/2 from it on either side. A face through a plane of cell centres (a wall an odd
+number of half spacings from its frame's origin) has its wall particles at dp, 2 dp, ...
+``layers`` dp behind it: ``layers`` layers either way.
 
 Walls of several parts (a chute on its slope, a run-out on the level) each take their own frame.
 Where parts meet, a point behind more than one of them belongs to each part it is within dp of
@@ -47,6 +50,7 @@ from .sources import LatticePoints, Points
 # meshio cell types whose cells are planar polygons, split into triangle fans
 _POLYGONS = ("triangle", "quad", "polygon")
 COVERED = 0.5  # a joint's point is filled where earlier parts' kernel sum is this fraction of a full lattice's
+ON_SURFACE = 1e-9  # distances within this many dp of 0 or of the layers' depth are taken as equal to it
 
 
 @dataclass
@@ -289,7 +293,7 @@ class _WallLayers:
             index = self._candidates(k, axis, lo - margin, hi + margin)
             x = self.lattices[k].points(index)
             dist, near, behind = nearest_on_parts(x, self.triangles, self.normals, self.part, n_parts)
-            claims = behind & (dist < depth)
+            claims = behind & (dist > ON_SURFACE * dp) & (dist <= depth + ON_SURFACE * dp)
             mine = claims[:, k].copy()
             for j in range(n_parts):
                 if j != k:  # another part nearer by more than dp takes the point

@@ -129,6 +129,21 @@ def test_wall_layers_behind_an_open_box_are_box_walls_with_rounded_corners():
                                atol=1e-12)
 
 
+def test_a_side_through_lattice_points_keeps_all_its_layers():
+    """A side an odd number of half spacings from the frame's origin passes through a plane of
+    lattice points: those on it are not wall particles, and its layers are the ``layers`` planes
+    at dp, 2 dp, ... layers dp behind it (rounding must not lose the last: flume_3d's end and side
+    walls at dp = 0.08 m had two)."""
+    lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.41, 0.3, 0.2), 0.02, 3
+    [(x, n)] = layers_of([Surface("tank", open_box(lo, hi))], dp, layers)
+    middle = (x[:, 1] > 0.1) & (x[:, 1] < 0.2) & (x[:, 2] > 0.05) & (x[:, 2] < 0.15)
+    beyond = middle & (x[:, 0] > 0.3)
+    np.testing.assert_allclose(np.unique(x[beyond, 0].round(12)), hi[0] + dp * np.arange(1, layers + 1))
+    assert np.allclose(n[beyond], (-1.0, 0.0, 0.0))
+    behind_lo = middle & (x[:, 0] < 0.1)  # the side on a lattice plane: dp/2, 3 dp/2, ... behind it
+    np.testing.assert_allclose(np.unique(x[behind_lo, 0].round(12)), -dp * (np.arange(layers)[::-1] + 0.5))
+
+
 def test_parts_share_the_layers_behind_their_joints_without_overlap():
     """The same open box as two parts (floor; sides) gives the same particles as one part."""
     lo, hi, dp, layers = (0.0, 0.0, 0.0), (0.4, 0.3, 0.2), 0.02, 3
