@@ -13,7 +13,9 @@ away from the material). Only wall particles nearer than dp to i are asked, so t
 layers and other walls' particles do not judge it.
 
 A wall is as thick, behind a particle j of its surface (no wall particle straight in front of
-it, less than dp/2 off j's normal line), as dp plus the depth behind j of the deepest wall
+it, less than dp/2 off j's normal line, nor any nearer than NEAR dp in front of it: where two
+parts' lattices meet, a deeper particle has the other lattice's in front of it up to dp/sqrt(2)
+off its line), as dp plus the depth behind j of the deepest wall
 particle k within the kernel's support, (x_j - x_k) . n_j: dp for a wall of one layer, and at an
 edge or a corner the depth along j's slanted normal. A material particle at the surface sees wall
 particles out to the support's reach, support_layers of them on a lattice; with fewer the wall
@@ -34,6 +36,7 @@ from .particles import WALL, WALL_SLIP, is_wall
 
 DEPTH_REFUSED = 0.25  # in dp: a body particle deeper than this behind a wall's surface is refused
 THIN_SLACK = 0.5  # in dp: a wall thinner than its layers' due thickness less this is warned of
+NEAR = 1.25  # in dp: a wall particle this near in front of another covers it (its lattice's diagonal is 1.41)
 
 
 @njit(cache=True)
@@ -105,7 +108,8 @@ def wall_thickness(n, start, nbr, x, normal, dp, thickness):
                 r2 += d * d
                 along += d * normal[i, a]
             deepest = max(deepest, along)
-            covered = covered or (along < -0.5 * dp and r2 - along * along < 0.25 * dp * dp)
+            in_front = along < -0.5 * dp
+            covered = covered or (in_front and (r2 - along * along < 0.25 * dp * dp or r2 < (NEAR * dp) ** 2))
         thickness[i] = np.nan if covered else dp + deepest
 
 

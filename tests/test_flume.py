@@ -64,6 +64,19 @@ def test_no_two_particles_of_the_flume_crowd():
     assert len(nbr) == 0
 
 
+def test_at_a_coarse_spacing_only_the_barrier_is_too_thin(tmp_path):
+    """At dp = 0.08 m the 0.12 m barrier holds one layer and is warned of. The other walls are not:
+    the run-out's end wall (x = 3 m) and the side wall at y = 1 m pass through planes of lattice
+    points and keep three layers behind them (two before meshes.ON_SURFACE), and where two parts'
+    lattices meet, a deeper particle with the other lattice's in front off its line is not taken
+    for a surface of one layer (overlap.NEAR)."""
+    r = mpisph(["flume_3d", "--set", "dp=0.08", "--t-end", "1e-6", "--quiet", "--out", tmp_path / "out"], ranks=1,
+               timeout=300)
+    assert r.returncode == 0, r.stderr
+    warnings = [line for line in r.stderr.splitlines() if "dp thick" in line]
+    assert len(warnings) == 1 and warnings[0].startswith("mpisph: warning: wall 'barrier' is 1 dp thick"), r.stderr
+
+
 @pytest.mark.ranks
 def test_the_flume_on_eight_ranks_ends_with_the_bits_of_one(tmp_path):
     args = ["--set", "dp=0.1", "--t-end", "0.12", "--output-interval", "0.06", "--quiet"]
