@@ -2,7 +2,7 @@
 kernel_mean.py): the law's shear stress is concave in the pressure, so a scattered pressure
 carries less shear than its mean by the fraction the docstring derives; taken from a particle's
 own carried pressure the law is the state's; the kernel mean keeps a smooth pressure and takes a
-grain-to-grain scatter out."""
+grain-to-grain scatter out; the frames' inertial number and friction are the law's."""
 
 import numpy as np
 import pytest
@@ -10,7 +10,7 @@ import pytest
 from lattice import lattice
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.physics.kernel_mean import kernel_mean
-from mpisph.physics.mu_i import granular_state, law_viscosity
+from mpisph.physics.mu_i import granular_state, inertial_number_and_friction, law_viscosity
 from mpisph.physics.mu_i_law import friction
 
 
@@ -38,6 +38,26 @@ def test_the_law_of_a_grains_own_carried_pressure_is_the_states():
         state[store] = eta
     assert np.all(state[False] > 0.0)
     assert state[True] == pytest.approx(state[False], rel=1e-9)
+
+
+def test_the_frames_inertial_number_and_friction_are_the_laws():
+    """With law_pressure = carried_mean the frames' I and mu(I) are the ones law_viscosity takes, I
+    of Eq. 6 from the law's pressure, so that mu times that pressure is the shear stress eta
+    gamma_dot the law gives (the regularisation let go, m_0 gamma_dot >> 1); without it, I is Eq.
+    8's of the volume fraction, as granular_state takes it."""
+    m = incline_material().params
+    n = 3
+    kind, rho_s = np.zeros(n, np.int8), np.full(n, m.rho_s0)
+    rho = m.rho_s0 * np.array([0.57, 0.58, 0.59])
+    gamma_dot, law_p = np.array([60.0, 120.0, 240.0]), np.array([80.0, 130.0, 200.0])
+    eta = np.zeros(n)
+    law_viscosity(n, kind, rho_s, gamma_dot, law_p, eta, 2, m)
+    I, mu = np.zeros(n), np.zeros(n)
+    inertial_number_and_friction(n, kind, rho, rho_s, gamma_dot, law_p, 2, m, I, mu)
+    assert I == pytest.approx(gamma_dot * m.d0 / np.sqrt(law_p / m.rho_s0), rel=1e-12)
+    assert mu * law_p == pytest.approx(eta * gamma_dot, rel=1e-6)
+    inertial_number_and_friction(n, kind, rho, rho_s, gamma_dot, np.zeros(0), 2, m, I, mu)
+    assert I == pytest.approx((m.phi_max - rho / rho_s) / (m.phi_max - m.phi_min), rel=1e-12)
 
 
 @pytest.mark.parametrize("sigma", [0.1, 0.2])

@@ -206,9 +206,16 @@ def law_viscosity(n, kind, rho_s, gamma_dot, law_p, eta, dim, m):
     for i in range(n):
         if kind[i] != MOVING:
             continue
-        d = grain_size(rho_s[i] / m.rho_s0, dim, m)
-        I = gamma_dot[i] * d * math.sqrt(rho_s[i] / law_p[i]) if law_p[i] > 0.0 else 0.0
+        I, d = law_inertial_number(gamma_dot[i], rho_s[i], law_p[i], dim, m)
         eta[i] = regularised_viscosity(law_p[i], gamma_dot[i], I, rho_s[i], d, m)
+
+
+@njit(inline="always")
+def law_inertial_number(gamma_dot, rho_s, law_p, dim, m):
+    """(I, d): I = gamma_dot d / sqrt(law_p / rho_s) of 004_ Eq. 6 from the law's pressure, 0 where
+    law_p <= 0, and the grain size d of Eq. 43 (mu_i_law.grain_size)."""
+    d = grain_size(rho_s / m.rho_s0, dim, m)
+    return (gamma_dot * d * math.sqrt(rho_s / law_p) if law_p > 0.0 else 0.0), d
 
 
 @njit(inline="always")
@@ -323,10 +330,17 @@ def viscous_time_step(n, kind, rho, eta, h):
 
 
 @njit(cache=True)
-def inertial_number_and_friction(n, rho, rho_s, m, I, mu):
-    """I from the volume fraction (Eq. 8) and mu(I) (Eq. 7) for frames."""
+def inertial_number_and_friction(n, kind, rho, rho_s, gamma_dot, law_p, dim, m, I, mu):
+    """For frames, the I and mu(I) (Eq. 7) the law takes: I from the volume fraction (Eq. 8), or
+    with ``law_p`` of length N (law_pressure = carried_mean) from the strain rate and the law's
+    pressure (``law_inertial_number``), as ``law_viscosity`` takes it (0 off the moving particles)."""
     for i in range(n):
-        I[i] = inertial_number(rho[i], rho_s[i], m)
+        if law_p.shape[0] == 0:
+            I[i] = inertial_number(rho[i], rho_s[i], m)
+        elif kind[i] == MOVING:
+            I[i] = law_inertial_number(gamma_dot[i], rho_s[i], law_p[i], dim, m)[0]
+        else:
+            I[i] = 0.0
         mu[i] = friction(I[i], m)
 
 
@@ -429,8 +443,9 @@ class MuIScheme(MorrisWalls, Scheme):
     integrator = "symplectic_verlet"  # 004_ Sec. 3.4
     materials = (MuIGranular,)
     acoustic_cfl = 0.5  # 004_ Eq. 39
-    derived = (Field("inertial_number", (), np.float64, "inertial number I from the volume fraction (004_ Eq. 8) [-]"),
-               Field("friction", (), np.float64, "friction coefficient mu(I) (004_ Eq. 7) [-]"),
+    derived = (Field("inertial_number", (), np.float64, "inertial number I the law takes: from the volume fraction "
+                     "(004_ Eq. 8), with law_pressure = carried_mean from gamma_dot and law_pressure (Eq. 6) [-]"),
+               Field("friction", (), np.float64, "friction coefficient mu(I) of that I (004_ Eq. 7) [-]"),
                STRESS, *SOLID_OUTPUT_FIELDS)  # the stress of mu_i_stress.py
     options = {"alpha": 0.0, "beta_max": 1.5, "viscous_form": "cleary", "viscous_step": "explicit",
                "viscous_stress": "full", "viscosity_mean": "harmonic", "pressure_form": "symmetric",
@@ -577,6 +592,7 @@ class MuIScheme(MorrisWalls, Scheme):
 
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)
-        inertial_number_and_friction(n, pa.rho[:n], pa.rho_s[:n], self.params, I, mu)
+        law_p = pa.law_pressure if self.smoothed_pressure else self._no_law_pressure
+        inertial_number_and_friction(n, pa.kind, pa.rho, pa.rho_s, pa.gamma_dot, law_p, self.dim, self.params, I, mu)
         stress = granular_stress_of(self, pa, n)
         return {"inertial_number": I, "friction": mu, "stress": stress, **solid_output_fields(stress, pa.v, n)}
