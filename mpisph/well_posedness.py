@@ -90,17 +90,19 @@ def criterion(nu, mu):
 def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
     """(I_1, I_2): the inertial numbers between which C(I) < 0, each to a relative 1e-10 by
     bisection from a logarithmic scan of [lowest, highest] I_0 (C depends on I / I_0 where I_s = 0);
-    None where C >= 0 throughout; ValueError where the scan finds more than one window or one
-    reaching its ends."""
+    an end beyond the scan is 0 or inf (a law of nearly no friction, mu of a tenth of a degree, is
+    well-posed up to some 1e4 I_0); None where C >= 0 throughout; ValueError where the scan finds
+    more than one window."""
     I = m.I_0 * np.geomspace(lowest, highest, points)
     well = ill_posedness(I, m) < 0.0
     if not well.any():
         return None
     first, last = np.flatnonzero(well)[[0, -1]]
-    if first == 0 or last == points - 1 or not well[first:last + 1].all():
-        raise ValueError(f"mu(I) is not well-posed in one window inside [{lowest:g}, {highest:g}] I_0")
+    if not well[first:last + 1].all():
+        raise ValueError(f"mu(I) is well-posed in more than one window inside [{lowest:g}, {highest:g}] I_0")
     well_posed = lambda x: ill_posedness(x, m) < 0.0
-    return _crossing(well_posed, I[first - 1], I[first]), _crossing(well_posed, I[last], I[last + 1])
+    return (0.0 if first == 0 else _crossing(well_posed, I[first - 1], I[first]),
+            math.inf if last == points - 1 else _crossing(well_posed, I[last], I[last + 1]))
 
 
 def _crossing(holds, lo, hi):

@@ -11,7 +11,7 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
-from mpisph.physics.mu_i import JOSTLE_STRESS, jostle_inertial_number
+from mpisph.physics.mu_i import JOSTLE_STRESS, jostle_inertial_number, well_posed_range
 from mpisph.physics.mu_i_law import friction
 from mpisph.well_posedness import criterion, ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
     partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
@@ -59,6 +59,21 @@ def test_the_window_scales_with_i_0():
     for scale in (1e-10, 1e4):
         window = well_posed_window(table_1_law("sand_0.4mm", I_0=scale * 2.65))
         assert window == pytest.approx((scale * lo, scale * hi), rel=1e-8)
+
+
+def test_a_law_of_nearly_no_friction_is_well_posed_beyond_the_scan():
+    """mu_s and mu_2 of 0.38 and 0.64 degrees (coefficients typed as angles): C < 0 from I_1 =
+    I_0 mu_s^3 / (4 (mu_2 - mu_s)) to the lowest order (where -4 nu + mu_s^2 changes sign) up to
+    some 1e4 I_0, past the scan's 1e3 I_0, so the window's upper end is inf and the start-up
+    report says so, where both ended in a ValueError traceback."""
+    mu_s, mu_2 = math.tan(math.radians(0.38)), math.tan(math.radians(0.64))
+    m = table_1_law("glass_beads", mu_s=mu_s, mu_2=mu_2)
+    lo, hi = well_posed_window(m)
+    assert hi == math.inf
+    assert lo == pytest.approx(m.I_0 * mu_s**3 / (4 * (mu_2 - mu_s)), rel=0.01)
+    assert (ill_posedness(np.geomspace(lo * 1.001, 1e3 * m.I_0, 50), m) < 0).all()
+    assert well_posed_range(lo, hi) == f"only for I > {lo:.3g}"
+    assert well_posed_range(0.0, 2.0) == "only for I < 2" and well_posed_range(0.0, math.inf) == "for every I"
 
 
 def test_a_nearly_rate_independent_law_has_no_window():

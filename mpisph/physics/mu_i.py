@@ -344,6 +344,15 @@ def inertial_number_and_friction(n, kind, rho, rho_s, gamma_dot, law_p, dim, m, 
         mu[i] = friction(I[i], m)
 
 
+def well_posed_range(lower, upper):
+    """'only for lower < I < upper', an end at 0 or inf (well_posed_window) left out."""
+    if lower > 0.0 and upper < math.inf:
+        return f"only for {lower:.3g} < I < {upper:.3g}"
+    if lower > 0.0 or upper < math.inf:
+        return f"only for I > {lower:.3g}" if lower > 0.0 else f"only for I < {upper:.3g}"
+    return "for every I"
+
+
 def pair_term_factors(dim, deviatoric):
     """(eta factor, radial, along) of the viscous pair force eta_ij (radial (v_ij . e) e + along v_ij)
     m_j W' / (r rho_i rho_j) (``momentum``). On a smooth velocity at a uniform eta the two parts tend
@@ -566,7 +575,7 @@ class MuIScheme(MorrisWalls, Scheme):
     def report(self):
         m = self.material
         window = well_posed_window(m.params)
-        where = f"only for {window[0]:.3g} < I < {window[1]:.3g}" if window else "at no I"
+        where = "at no I" if window is None else well_posed_range(*window)
         grains = self.dp / m.params.d0
         return (f"mu(I): sound speed at rest c0 = {m.c0:.4g} m/s; regularised viscosity at tau_y = tau_0 = "
                 f"{m.tau_0:g} Pa: eta_max = {m.eta_max(m.tau_0):.4g} Pa s (004_ Eq. 53)",
