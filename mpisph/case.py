@@ -483,7 +483,7 @@ def resolve_params(module, overrides, base=None):
     for name, text in overrides.items():
         if name not in params:
             close = closest(name, params)
-            hint = f"; did you mean {close!r}?" if close else ""
+            hint = f"; did you mean {close!r}{_in_degrees(params[close], text)}?" if close else ""
             raise InputError(f"unknown parameter {name!r} for this case{hint}")
         values[name] = params[name].parse(name, text)
     for name, value in values.items():
@@ -493,10 +493,28 @@ def resolve_params(module, overrides, base=None):
 
 
 def angle_warnings(params, values):
-    """A warning for each angle (a parameter in degrees) in (0, pi/2]: a value in radians, likely."""
+    """A warning for each angle (a parameter in degrees) in (0, pi/2]: a value in radians, likely,
+    or for a friction angle a friction coefficient."""
     return [f"{name} = {values[name]:g} deg: angles are in degrees ({values[name]:g} rad would be "
-            f"{math.degrees(values[name]):.4g} deg)"
+            f"{math.degrees(values[name]):.4g} deg{_as_coefficient(p, values[name])})"
             for name, p in params.items() if p.unit == "deg" and 0.0 < values.get(name, 0.0) <= math.pi / 2]
+
+
+def _in_degrees(param, text):
+    """' (in degrees: a friction coefficient TEXT is atan(TEXT))' where ``param`` is a friction
+    angle and ``text`` a number (mu_s=0.38 given for mu_s_deg), else ''."""
+    try:
+        value = float(text)
+    except ValueError:
+        return ""
+    return f" (in degrees: a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g})" if (
+        param.unit == "deg" and "friction" in param.doc) else ""
+
+
+def _as_coefficient(param, value):
+    """', a friction coefficient VALUE is atan(VALUE) deg' for a friction angle, else ''."""
+    is_friction = "friction" in param.doc
+    return f", a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g} deg" if is_friction else ""
 
 
 def build_case(module, values):

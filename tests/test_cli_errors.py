@@ -43,6 +43,8 @@ def existing_output(tmp_path):
     (["no_such_case"], ["unknown case 'no_such_case'"]),
     (["elliptical_drp"], ["did you mean 'elliptical_drop'"]),
     (["elliptical_drop", "--set", "radiuss=2"], ["unknown parameter 'radiuss'", "did you mean 'radius'"]),
+    (["lube_collapse_2d", "--set", "mu_s=0.38"],
+     ["did you mean 'mu_s_deg' (in degrees: a friction coefficient 0.38 is 20.81)?"]),
     (["elliptical_drop", "--set", "dp=fine"], ["dp takes a number", "'fine'"]),
     (["taylor_green", "--set", "nx=2.5"], ["nx takes a whole number"]),
     (["elliptical_drop", "--set", "dp=-0.01"], ["dp must be positive"]),

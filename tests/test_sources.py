@@ -186,12 +186,14 @@ def test_probes_by_id_are_checked_and_probes_by_position_take_the_nearest_body_p
 
 
 def test_an_angle_that_looks_like_radians_is_warned():
-    """A friction angle of 0.35 (20 degrees typed in radians) builds, with a warning that says so;
-    0 (a frictionless wall, undrained clay) and the defaults do not."""
+    """A friction angle of 0.35 (20 degrees typed in radians, or tan 19 degrees) builds, with a
+    warning that gives both readings, the dilatancy angle's only the first; 0 (a frictionless wall,
+    undrained clay) and the defaults do not."""
     module = load_case_module("cohesive_failure_2d")
-    case = build_case(module, resolve_params(module, {"dp": "0.2", "phi": "0.35"}))
+    case = build_case(module, resolve_params(module, {"dp": "0.2", "phi": "0.35", "psi": "0.2"}))
     assert [w for w in case.warnings if "angles are in degrees" in w] == [
-        "phi = 0.35 deg: angles are in degrees (0.35 rad would be 20.05 deg)"]
+        "phi = 0.35 deg: angles are in degrees (0.35 rad would be 20.05 deg, a friction coefficient 0.35 is "
+        "19.29 deg)", "psi = 0.2 deg: angles are in degrees (0.2 rad would be 11.46 deg)"]
     for overrides in ({"dp": "0.2"}, {"dp": "0.2", "phi": "0", "psi": "0"}):
         case = build_case(module, resolve_params(module, overrides))
         assert not [w for w in case.warnings if "angles are in degrees" in w]
