@@ -37,7 +37,9 @@ class Param:
     """A case parameter: default value (its type is the parameter's type), unit, meaning; with
     ``stabilisers``, a value may also be several of the choices but "none" joined by "+", which
     stabilisers.stabiliser_names checks as a combination; with ``bounds`` (low, high), a number
-    must lie in [low, high). A float must be finite."""
+    must lie in [low, high). A float must be finite. With ``applies`` (name, choices), the
+    parameter acts only where the parameter ``name`` is one of ``choices`` (a stabiliser
+    combination: holds one of them); ``idle_warnings`` says so of a value set where it does not."""
 
     default: object
     unit: str
@@ -46,6 +48,7 @@ class Param:
     positive: bool = False
     stabilisers: bool = False
     bounds: tuple = ()
+    applies: tuple = ()
 
     @property
     def type(self):
@@ -54,6 +57,10 @@ class Param:
     def with_default(self, default):
         """The same parameter with another default (a case's own choice of a shared parameter)."""
         return dataclasses.replace(self, default=default)
+
+    def only_with(self, name, *choices):
+        """The same parameter, acting only where the parameter ``name`` is one of ``choices``."""
+        return dataclasses.replace(self, applies=(name, choices))
 
     def parse(self, name, text):
         """Convert command-line text to the parameter's type, or raise InputError."""
@@ -127,7 +134,7 @@ RUN_PARAMS = {
 # Every case that offers the stabiliser ``shifting`` exposes this.
 SHIFTING_PARAMS = {
     "shifting_coefficient": Param(COEFFICIENT, "-", "C of the particle shift (Xu et al. 2009 Eq. 35, who give 0.01-0.1; "
-                                  "with stabiliser=shifting)", positive=True),
+                                  "with stabiliser=shifting)", positive=True, applies=("stabiliser", ("shifting",))),
 }
 
 COMBINATION_DOC = (f"; several joined by {SEPARATOR}, as artificial_stress{SEPARATOR}utvf, apply in that order, "
@@ -136,7 +143,8 @@ COMBINATION_DOC = (f"; several joined by {SEPARATOR}, as artificial_stress{SEPAR
 # Every case that offers the stabiliser ``artificial_stress`` exposes this.
 ARTIFICIAL_STRESS_PARAMS = {
     "artificial_stress_epsilon": Param(EPSILON, "-", "epsilon of the artificial stress (Monaghan 2000; Gray, "
-                                       "Monaghan & Swift 2001; with stabiliser=artificial_stress)", positive=True),
+                                       "Monaghan & Swift 2001; with stabiliser=artificial_stress)", positive=True,
+                                       applies=("stabiliser", ("artificial_stress",))),
 }
 
 
@@ -183,8 +191,10 @@ def classic_viscosity_params(alpha, beta, scheme):
     """The alpha and beta of 002_ Eq. 25's artificial viscosity, with the case's defaults, for a
     case that offers the classic scheme ``scheme`` (read by ``scheme_keywords``)."""
     return {
-        "av_alpha": Param(alpha, "-", f"alpha of the artificial viscosity (002_ Eq. 25; {scheme})"),
-        "av_beta": Param(beta, "-", f"beta of the artificial viscosity (002_ Eq. 25; {scheme})"),
+        "av_alpha": Param(alpha, "-", f"alpha of the artificial viscosity (002_ Eq. 25; {scheme})",
+                          applies=("scheme", (scheme,))),
+        "av_beta": Param(beta, "-", f"beta of the artificial viscosity (002_ Eq. 25; {scheme})",
+                         applies=("scheme", (scheme,))),
     }
 
 
@@ -203,16 +213,16 @@ UTVF_PARAMS = {
     "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "
                                   "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
                                   "or kept in place, so that a perfect lattice stays regular "
-                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS),
+                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS, applies=("stabiliser", ("utvf",))),
     "utvf_near_surface_normal": Param(NEAR_SURFACE_NORMALS[0], "-", "with stabiliser=utvf, the normal on which "
                                       "a near-surface particle's shift is projected (000_ Eq. 36): its own B g "
                                       "(Eq. 35 as printed) or the kernel-weighted mean of the Eq. 35 normals of the "
                                       "outermost particles within h (stabilisers/transport_velocity.py)",
-                                      choices=NEAR_SURFACE_NORMALS),
+                                      choices=NEAR_SURFACE_NORMALS, applies=("stabiliser", ("utvf",))),
     "utvf_splashed": Param(SPLASHED[0], "-", "with stabiliser=utvf, splashed particles (outermost, no near-surface "
                            "particle within h): kept in place (000_ Sec. 3.3's text) or shifted along their surface "
                            "as the other outermost ones, as the authors' code does (stabilisers/transport_velocity.py)",
-                           choices=SPLASHED),
+                           choices=SPLASHED, applies=("stabiliser", ("utvf",))),
 }
 
 
@@ -517,11 +527,29 @@ def _as_coefficient(param, value):
     return f", a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g} deg" if is_friction else ""
 
 
+def idle_warnings(params, values):
+    """A warning for each parameter set off its default where it does nothing (``Param.applies``):
+    av_alpha with the Riemann scheme, a UTVF option without UTVF."""
+    warnings = []
+    for name, p in params.items():
+        if not p.applies or p.applies[0] not in values or values.get(name, p.default) == p.default:
+            continue
+        other, choices = p.applies
+        chosen = str(values[other])
+        if not set(chosen.split(SEPARATOR)) & set(choices):
+            warnings.append(f"{name} = {values[name]:g}" if isinstance(values[name], float) else
+                            f"{name} = {values[name]}")
+            warnings[-1] += (f" does nothing with {other} = {chosen}: it acts only with {other} = "
+                             + " or ".join(choices))
+    return warnings
+
+
 def build_case(module, values):
     """Call the case's ``setup`` with the parameter values as attributes; its warnings gain those
-    of ``angle_warnings`` and ``gauges.gauge_warnings``."""
+    of ``angle_warnings``, ``idle_warnings`` and ``gauges.gauge_warnings``."""
     case = module.setup(SimpleNamespace(**values))
-    case.warnings = [*case.warnings, *angle_warnings(module.PARAMS, values), *gauge_warnings(case)]
+    case.warnings = [*case.warnings, *angle_warnings(module.PARAMS, values), *idle_warnings(module.PARAMS, values),
+                     *gauge_warnings(case)]
     return case
 
 

@@ -66,9 +66,9 @@ def scheme_params(alpha=1.0, beta=0.0):
                         choices=("riemann_granular", "classic_granular")),
         **classic_viscosity_params(alpha, beta, "classic_granular"),
         "chi_max": Param(1.5, "-", "chi_max of Morris's walls (002_ Eq. 34, 1.5-2; classic_granular)",
-                         positive=True),
-        "limiter": limiter_param("separating"),
-        "stress_diffusion": stress_diffusion_param(),
+                         positive=True, applies=("scheme", ("classic_granular",))),
+        "limiter": limiter_param("separating").only_with("scheme", "riemann_granular"),
+        "stress_diffusion": stress_diffusion_param().only_with("scheme", "riemann_granular"),
     }
 
 

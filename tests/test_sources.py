@@ -185,6 +185,28 @@ def test_probes_by_id_are_checked_and_probes_by_position_take_the_nearest_body_p
         case({"flat": (0.1, 0.1, 0.1)})
 
 
+def test_a_parameter_set_where_it_does_nothing_is_warned():
+    """The classic scheme's artificial viscosity and Morris's chi_max set for the Riemann scheme,
+    the Riemann limiter for the classic one and a UTVF option without UTVF each build with a warning
+    (a geotechnical user's --set av_alpha=5 chi_max=3 changed nothing, silently); set where they act,
+    or left at their defaults, they are not warned of."""
+    module = load_case_module("cohesive_failure_2d")
+
+    def idle(**overrides):
+        case = build_case(module, resolve_params(module, {"dp": "0.2", **overrides}))
+        return [w for w in case.warnings if "does nothing" in w]
+
+    assert idle(av_alpha="5", chi_max="3") == [
+        "av_alpha = 5 does nothing with scheme = riemann_granular: it acts only with scheme = classic_granular",
+        "chi_max = 3 does nothing with scheme = riemann_granular: it acts only with scheme = classic_granular"]
+    assert idle(scheme="classic_granular", limiter="none") == [
+        "limiter = none does nothing with scheme = classic_granular: it acts only with scheme = riemann_granular"]
+    assert idle(stabiliser="tvf", utvf_splashed="shifted") == [
+        "utvf_splashed = shifted does nothing with stabiliser = tvf: it acts only with stabiliser = utvf"]
+    assert idle() == [] and idle(scheme="classic_granular", av_alpha="2", chi_max="2") == []
+    assert idle(stabiliser="artificial_stress+utvf", utvf_splashed="shifted", artificial_stress_epsilon="0.3") == []
+
+
 def test_an_angle_that_looks_like_radians_is_warned():
     """A friction angle of 0.35 (20 degrees typed in radians, or tan 19 degrees) builds, with a
     warning that gives both readings, the dilatancy angle's only the first; 0 (a frictionless wall,
