@@ -52,7 +52,8 @@ def write_diagnostics(directory, times, energies):
 
 def test_a_stage_that_moves_the_body_beyond_the_slide_share_slid_and_the_release_settles(tmp_path):
     """The release moves the block by 0.01 H over 1 s; a restart of it by nothing, another by 0.03 H
-    (beyond SLIDE); their kinetic energy peaks 0.25 s into each."""
+    (beyond SLIDE H in its second), which over a height of 2.5 H stands; their kinetic energy peaks
+    0.25 s into each."""
     release, stood, slid = (tmp_path / name for name in ("release", "stood", "slid"))
     for directory, shift in ((release, 0.01), (stood, 0.01), (slid, 0.04)):
         directory.mkdir()
@@ -62,31 +63,47 @@ def test_a_stage_that_moves_the_body_beyond_the_slide_share_slid_and_the_release
     for directory in (stood, slid):
         write_diagnostics(directory, [1.25, 1.5, 2.0], [5.0, 1.0, 0.25])
     first, end = read_frame(list_frames(release)[0]), read_frame(list_frames(release)[-1])
-    settled = strength_reduction.stage_outcome(0.9, release, first, first, settling=True)
+    settled = strength_reduction.stage_outcome(0.9, release, first, first, 1.0, settling=True)
     assert settled.outcome == "settling" and settled.moved == pytest.approx(0.01, abs=1e-12)
     assert (settled.peak_energy, settled.peak_time, settled.end_energy) == (5.0, 0.25, 0.5)
-    held = strength_reduction.stage_outcome(1.0, stood, end, first)
+    held = strength_reduction.stage_outcome(1.0, stood, end, first, 1.0)
     assert held.outcome == "stood" and held.moved == pytest.approx(0.0, abs=1e-12)
     assert (held.start, held.end, held.peak_time) == (1.0, 2.0, 0.25)
-    gone = strength_reduction.stage_outcome(1.1, slid, end, first)
+    gone = strength_reduction.stage_outcome(1.1, slid, end, first, 1.0)
     assert gone.outcome == "slid" and gone.moved == pytest.approx(0.03, abs=1e-12)
     assert gone.since_release == pytest.approx(0.04, abs=1e-12)
+    # judged over H = 2.5 m (a slope of its own height, --height), 0.03 m is 0.012 H: it stood
+    shorter = strength_reduction.stage_outcome(1.1, slid, end, first, 2.5)
+    assert shorter.outcome == "stood" and shorter.moved == pytest.approx(0.012, abs=1e-12)
     rows = strength_reduction.table([settled, held, gone], SOIL)
     assert rows[4].startswith(f"| 1.1 | {5 / 1.1:.3f} |") and rows[4].endswith("| 0.0300 | 0.040 | slid |")
 
 
+def test_the_slide_share_is_per_second_of_the_stage(tmp_path):
+    """A hold of 2 s that creeps 0.02 H (0.01 H a second, the creep of a cut at rest) stands, where
+    over a stage of 1 s the same 0.02 H is a slide: the share SLIDE is per second of the stage."""
+    release, long, short = (tmp_path / name for name in ("release", "long", "short"))
+    for directory, t, shift in ((release, 1.0, 0.0), (long, 3.0, 0.02), (short, 2.0, 0.02)):
+        directory.mkdir()
+        write_block(directory, 1, t, shift)
+        write_diagnostics(directory, [t - 0.5, t], [1.0, 0.5])
+    write_block(release, 0, 0.0, 0.0)
+    first, end = (read_frame(path) for path in list_frames(release))
+    assert strength_reduction.stage_outcome(0.9, long, end, first, 1.0).outcome == "stood"
+    assert strength_reduction.stage_outcome(0.9, short, end, first, 1.0).outcome == "slid"
+
+
 def test_the_release_creep_is_its_second_halfs_displacement_per_second(tmp_path):
     """A release to 2 s whose block moves 0.008 H from 1 s to its end creeps at 0.008 H/s, whatever it
-    did before (0.5 H by 0.5 s) or in between (a swing at 1.5 s): under SLIDE over a stage of 1 s,
-    past it over 2 s."""
+    did before (0.5 H by 0.5 s) or in between (a swing at 1.5 s): under SLIDE H per second."""
     release = tmp_path / "release"
     release.mkdir()
     for index, (t, shift) in enumerate(((0.0, 0.0), (0.5, 0.5), (1.0, 0.6), (1.5, 0.65), (2.0, 0.608))):
         write_block(release, index, t, shift)
-    stages = [strength_reduction.Stage(0.6, str(release), 0.0, 2.0, 1.0, 0.1, 0.1, 0.6, 0.6, "settling")]
+    stages = [strength_reduction.Stage(0.6, str(release), 0.0, 2.0, 1.0, 0.1, 0.1, 0.6, 0.6, "settling", 1.0)]
     creep = strength_reduction.release_creep(stages)
     assert creep == pytest.approx(0.008, rel=1e-9)
-    assert creep * 1.0 < strength_reduction.SLIDE < creep * 2.0
+    assert creep < strength_reduction.SLIDE
 
 
 def hand_built_launch(tmp_path, safety_factor, launched):
@@ -121,10 +138,18 @@ def test_the_search_climbs_to_the_first_slide_then_halves_the_bracket_from_the_l
     assert [os.path.basename(s.directory) for s in stages][::5] == ["stage00_F0.6", "stage05_F0.7125"]
     assert strength_reduction.bracket(stages) == (pytest.approx(0.7125, rel=1e-12), 0.725)
     soil = dict(SOIL, rho0=1850.0, g=9.8)
-    height, *factors = strength_reduction.limit_factors(strength_reduction.release_frame(stages), soil)
+    height = stages[0].height
     assert height == pytest.approx(1.0, rel=1e-12)  # the release's first frame, not the slid block's last
-    assert factors == list(references.vertical_cut_safety_factor(5e3, 20.0, 1850.0 * 9.8, 1.0, 0.0))
+    assert strength_reduction.limit_factors(height, soil) == \
+        references.vertical_cut_safety_factor(5e3, 20.0, 1850.0 * 9.8, 1.0, 0.0)
+    assert all(s.height == height for s in stages)
     strength_reduction.write_record(str(tmp_path), stages)
+    assert strength_reduction.read_record(str(tmp_path)) == stages
+    # a record written before the stages held H reads the release's height
+    import json
+    record = tmp_path / strength_reduction.RECORD
+    old = [{k: v for k, v in s.items() if k != "height"} for s in json.loads(record.read_text())]
+    record.write_text(json.dumps(old))
     assert strength_reduction.read_record(str(tmp_path)) == stages
 
 

@@ -113,7 +113,8 @@ def safety_factor(ranks):
         cmds.append(f".venv/bin/python scripts/strength_reduction.py {case} --set {' '.join(sets)} --factors "
                     f"{' '.join(f'{f:g}' for f in factors)} --bisect {BISECT} -n {ranks} --out RUN")
         release = strength_reduction.release_frame(stages)
-        height, associated, dilatant = strength_reduction.limit_factors(release, soil)
+        height = stages[0].height
+        associated, dilatant = strength_reduction.limit_factors(height, soil)
         stood, slid = strength_reduction.bracket(stages)
         middle = float("nan") if slid is None else 0.5 * (stood + slid)
         error = abs(middle / dilatant - 1.0)
