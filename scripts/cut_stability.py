@@ -11,14 +11,19 @@ density range of the last frame over rho0; and whether it stood or failed, by va
 ``verdict`` on the energy's peak and the last frame's displacement. A cut that stands keeps the
 displacement of its elastic unloading, a few hundredths of H, and its kinetic energy peaks in the first
 tenth of a second; one that fails moves a wedge by tenths of H and its energy peaks when the wedge slides.
+A run whose body does not start as a block (its top level over its whole width) is refused: a slope's
+height over a vertical cut's critical height says nothing (scripts/strength_reduction.py --height
+gives a slope's factor of safety).
 """
 
 import argparse
 import os
 
+import numpy as np
+
 from mpisph.io.diagnostics import read_diagnostics
 from mpisph.io.frames import list_frames, read_frame
-from mpisph.measure import cut_height, displacement_percentile, kinetic_energy_peak
+from mpisph.measure import cut_height, displacement_percentile, kinetic_energy_peak, surface_profile
 from mpisph.references import vertical_cut_critical_height
 from run_check import run_params  # (this directory)
 from validation.cuts import verdict
@@ -29,11 +34,18 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--at", type=float, nargs="+", default=[1.0, 3.0], help="times [s] of the displacements")
     a = ap.parse_args()
+    for run in a.runs:
+        run_params(ap, run, ("cohesion", "phi", "psi", "rho0", "g"), "soil runs (vertical_cut)")
+        first = read_frame(list_frames(run)[0])
+        dp = float(first["params"]["dp"])
+        level = float(np.mean(surface_profile(first, dp)[1] > cut_height(first) - 0.5 * dp))
+        if level < 1.0:
+            ap.error(f"{run}: its body's top is level over {level:.0%} of its width: not a vertical cut, whose "
+                     "critical height this script compares with; a slope's factor of safety: "
+                     "scripts/strength_reduction.py CASE --height H (the slope's own height)")
     print("| run | H [m] | H / H_c (associated) | H / H_c (psi) | peak kinetic energy [J] at [s] | "
           + " | ".join(f"99 % displacement / H at {t:g} s" for t in a.at) + " | rho / rho0 at the end | verdict |")
     print("|---" * (7 + len(a.at)) + "|")
-    for run in a.runs:
-        run_params(ap, run, ("cohesion", "phi", "psi", "rho0", "g"), "soil runs (vertical_cut)")
     for run in a.runs:
         paths = list_frames(run)
         first = read_frame(paths[0])

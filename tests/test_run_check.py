@@ -73,3 +73,19 @@ def test_at_rest_takes_the_bulk_density_at_rest_of_mu_i_grains(tmp_path):
     r = subprocess.run([sys.executable, str(scripts / "at_rest.py"), str(neither)], capture_output=True, text=True,
                        timeout=120, cwd=scripts)
     assert r.returncode == 2 and "which has neither rho0 nor rho_s0 and phi_max" in r.stderr.splitlines()[-1]
+
+
+def test_cut_stability_refuses_a_body_that_is_not_a_block(tmp_path):
+    """A soil run whose body's top is not level over its width (a slope; here four particles on a
+    diagonal) has no vertical cut's critical height to be judged against: one line, no table (a
+    slope on its foundation read 'stands' at H / H_c = 1.64, H counted from the foundation's base)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    scripts = Path(__file__).resolve().parent.parent / "scripts"
+    run = a_run(tmp_path / "run", {"case": "slope", "dp": 1.0, "cohesion": 8e3, "phi": 22.0, "psi": 0.0,
+                                   "rho0": 1900.0, "g": 9.81})
+    r = subprocess.run([sys.executable, str(scripts / "cut_stability.py"), str(run)], capture_output=True, text=True,
+                       timeout=120, cwd=scripts)
+    assert r.returncode == 2 and "Traceback" not in r.stderr and r.stdout == "", r.stderr
+    assert "its body's top is level over 25% of its width: not a vertical cut" in r.stderr.strip().splitlines()[-1]
