@@ -31,5 +31,5 @@ def test_the_worked_example_runs_and_its_back_wall_carries_the_at_rest_thrust(tm
     assert {"crest_ux", "crest_uy", "toe_ux", "toe_uy"} <= set(d)
     assert d["crest_uy"][0] == 0.0 and abs(d["crest_uy"][-1]) < 0.01 * p["dp"]  # at rest, settling
     points = (tmp_path / "gauge_face_points.csv").read_text().splitlines()
-    assert points[0] == "point,x,y" and points[1] == "p0,2.0,2.0" and len(points) == 12
+    assert points[0] == "point,x,y" and points[1] == "p0,2.0,2.5" and len(points) == 12
     assert "p0_plastic_strain" in read_diagnostics(tmp_path / "gauge_face.csv")

@@ -5,7 +5,8 @@ deep, in a tank of no-slip dummy walls open at the top; Drucker-Prager soil (the
 000_ with UTVF) at rest under its own sloping surface at t = 0. It records the displacement of the
 crest's and the toe's particles, the force and moment of the soil on the back wall (with its corner
 block under the floor), the velocity
-and plastic strain along a line under the slope's face, and the ground's profile.
+and plastic strain along a line under the slope's face (by half the smaller of H and D, so that it
+stays in the soil), and the ground's profile.
 
     .venv/bin/python -m mpisph docs/examples/slope_2d.py --set beta=60 cohesion=2e3 --t-end 3
 """
@@ -38,6 +39,7 @@ def setup(p):
     run = p.H / math.tan(math.radians(p.beta))  # the face's horizontal extent
     length = p.crest + run + 2.0 * p.H  # crest, face and a toe region
     top = p.D + p.H
+    below = 0.5 * min(p.H, p.D)  # the face gauge's depth under the face
 
     def ground(x):
         """The ground surface's height above each position: the crest, the face, the toe region."""
@@ -66,7 +68,7 @@ def setup(p):
         u_ref=math.sqrt(2.0 * p.g * top),
         probes={"crest": (p.crest, top), "toe": (p.crest + run, p.D)},
         wall_forces={"back": (0.0, 0.0)},  # and its moment about the back wall's foot
-        gauges=[Gauge.line("face", (p.crest, top - 0.5 * p.H), (p.crest + run, p.D - 0.5 * p.H), 11,
+        gauges=[Gauge.line("face", (p.crest, top - below), (p.crest + run, p.D - below), 11,
                            fields=("v", "plastic_strain")),
                 SurfaceGauge("profile", np.linspace(0.5 * p.dp, length - 0.5 * p.dp, 40)[:, None])],
     )
