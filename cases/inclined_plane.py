@@ -39,7 +39,9 @@ PARAMS = {
     "phi_min": Param(0.5, "-", "lowest volume fraction of the dense regime (Eq. 8)", positive=True),
     "K_t": Param(0.0, "1/Pa", "grain compressibility (Eq. 41); 0: Mach 0.1 at the steady surface speed (004_ "
                  "Sec. 5.1), or at sqrt(g H) where no steady flow exists"),
-    "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55)", positive=True),
+    "tau_0": Param(190.0, "Pa", "reference yield stress of the regularisation (Eq. 55): 004_ Table 2's, for its "
+                   "layer (rho_s0 = 800, H = 0.1 m); it does not follow rho_s0 or H (lube_collapse_2d's tau_0 = 0 "
+                   "takes mu_s phi_max rho_s0 g H_0)", positive=True),
     "m_0": Param(1.0, "s", "regularisation time at tau_0 (Eq. 55)", positive=True),
     **mu_i_params("004_ Fig. 6 also uses 0.05", "explicit"),
     **side_wall_params(),
