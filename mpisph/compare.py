@@ -28,7 +28,8 @@ and, in a second table, what the case records: each probe's displacement at the 
 force on each wall of ``Case.wall_forces``.
 
 OUT/compare_particles.png shows the last frame of each run coloured by FIELD (default: speed; 3D
-runs seen along y) on one colour scale and OUT/compare_energy.png the kinetic and total energy
+runs seen along y) on one colour scale, three panels a row, each framing the material of every run
+(walls beyond it cut off), and OUT/compare_energy.png the kinetic and total energy
 against time. A run that blows up (status 3) is measured at its last frame; a run that fails
 otherwise is listed as failed, with its error line (its whole standard error is in
 OUT/<value>/stderr.txt), and compare then exits with status 1 once the others are written. A value
@@ -274,6 +275,18 @@ def _label(frames, colour):
     return f"|{colour}|, the norm of its components" if several else colour
 
 
+def _material_box(lasts):
+    """((x0, z0), (x1, z1)) about every run's moving particles in the pictures' plane (x and the
+    last axis), widened by a twentieth of its size: the walls' far layers and the empty domain
+    above the material are left out of the panels."""
+    x = np.concatenate([last["x"][last["kind"] == MOVING][:, [0, -1]] for last in lasts.values()] or [np.zeros((0, 2))])
+    if not len(x):
+        return (0.0, 0.0), (1.0, 1.0)
+    lo, hi = x.min(axis=0), x.max(axis=0)
+    pad = 0.05 * max(float((hi - lo).max()), 1e-12)
+    return tuple(lo - pad), tuple(hi + pad)
+
+
 def pictures(runs, colour, out):
     """compare_particles.png and compare_energy.png in ``out`` from {run's title: its directory}."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -284,14 +297,20 @@ def pictures(runs, colour, out):
     values = {name: _field(last, colour) for name, last in lasts.items()}
     every = np.concatenate([v[np.isfinite(v)] for v in values.values()] or [np.zeros(0)])
     lo, hi = (float(every.min()), float(every.max())) if len(every) else (0.0, 1.0)
-    fig = Figure(figsize=(4.5 * max(len(done), 1) + 0.8, 4.2), dpi=110)
+    box = _material_box(lasts)
+    columns = min(max(len(done), 1), 3)
+    rows = -(-max(len(done), 1) // columns)
+    aspect = float(np.clip((box[1][1] - box[0][1]) / (box[1][0] - box[0][0]), 0.3, 1.5))
+    fig = Figure(figsize=(4.5 * columns + 0.8, (4.5 * aspect + 0.6) * rows), dpi=110)
     FigureCanvasAgg(fig)
     sc = None
     for k, (name, last) in enumerate(lasts.items()):
         moving = last["kind"] == MOVING
         x = last["x"]
         axes = (0, x.shape[1] - 1)
-        ax = fig.add_subplot(1, len(done), k + 1)
+        ax = fig.add_subplot(rows, columns, k + 1)
+        ax.set_xlim(box[0][0], box[1][0])
+        ax.set_ylim(box[0][1], box[1][1])
         ax.scatter(x[~moving][:, axes[0]], x[~moving][:, axes[1]], s=0.5, c="0.85", linewidths=0, rasterized=True)
         sc = ax.scatter(x[moving][:, axes[0]], x[moving][:, axes[1]], s=1.0, c=values[name], vmin=lo,
                         vmax=hi if hi > lo else lo + 1.0, linewidths=0, rasterized=True)

@@ -186,3 +186,17 @@ def test_compare_tables_what_the_case_records(tmp_path):
         k = int(np.argmax(size))
         assert cells[value][2:] == pytest.approx([size[k], d["t"][k], d["force_back_x"][k], d["force_back_y"][k]],
                                                  rel=1e-3)
+
+
+def test_the_pictures_frame_the_material_not_the_walls():
+    """The panels span the moving particles of every run, widened by a twentieth, in x and the
+    last axis: a tank's walls twice the material's height (a probe's slope, half its panels empty)
+    are left out."""
+    from mpisph.compare import _material_box
+    from mpisph.particles import MOVING, WALL
+    runs = {}
+    for name, top in (("a", 1.0), ("b", 2.0)):
+        x = np.array([[0.0, 0.0], [4.0, top], [-1.0, 10.0], [9.0, -1.0]])
+        runs[name] = {"x": x, "kind": np.array([MOVING, MOVING, WALL, WALL], np.int8)}
+    lo, hi = _material_box(runs)
+    assert lo == pytest.approx((-0.2, -0.2)) and hi == pytest.approx((4.2, 2.2))
