@@ -213,7 +213,8 @@ UTVF_PARAMS = {
     "utvf_edge_neighbours": Param(EDGE_NEIGHBOURS[0], "-", "with stabiliser=utvf, the 3D free-surface particles "
                                   "within h of an edge or corner (div r < 0.6 d): shifted (000_ Eq. 37 as printed) "
                                   "or kept in place, so that a perfect lattice stays regular "
-                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS, applies=("stabiliser", ("utvf",))),
+                                  "(stabilisers/transport_velocity.py)", choices=EDGE_NEIGHBOURS,
+                                  applies=("stabiliser", ("utvf",))),
     "utvf_near_surface_normal": Param(NEAR_SURFACE_NORMALS[0], "-", "with stabiliser=utvf, the normal on which "
                                       "a near-surface particle's shift is projected (000_ Eq. 36): its own B g "
                                       "(Eq. 35 as printed) or the kernel-weighted mean of the Eq. 35 normals of the "
@@ -505,26 +506,34 @@ def resolve_params(module, overrides, base=None):
 def angle_warnings(params, values):
     """A warning for each angle (a parameter in degrees) in (0, pi/2]: a value in radians, likely,
     or for a friction angle a friction coefficient."""
-    return [f"{name} = {values[name]:g} deg: angles are in degrees ({values[name]:g} rad would be "
-            f"{math.degrees(values[name]):.4g} deg{_as_coefficient(p, values[name])})"
-            for name, p in params.items() if p.unit == "deg" and 0.0 < values.get(name, 0.0) <= math.pi / 2]
+    warnings = []
+    for name, p in params.items():
+        value = values.get(name, 0.0)
+        if p.unit == "deg" and 0.0 < value <= math.pi / 2:
+            readings = [f"{value:g} rad would be {math.degrees(value):.4g} deg"]
+            readings += [f"{_as_friction(value)} deg"] * _is_friction(p)
+            warnings.append(f"{name} = {value:g} deg: angles are in degrees ({', '.join(readings)})")
+    return warnings
+
+
+def _is_friction(param):
+    """Whether ``param`` is a friction angle (in degrees, its meaning naming friction)."""
+    return param.unit == "deg" and "friction" in param.doc
+
+
+def _as_friction(value):
+    """'a friction coefficient VALUE is ATAN': the angle [deg] that a coefficient typed for it gives."""
+    return f"a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g}"
 
 
 def _in_degrees(param, text):
-    """' (in degrees: a friction coefficient TEXT is atan(TEXT))' where ``param`` is a friction
-    angle and ``text`` a number (mu_s=0.38 given for mu_s_deg), else ''."""
+    """' (in degrees: a friction coefficient TEXT is ATAN)' where ``param`` is a friction angle and
+    ``text`` a number (mu_s=0.38 given for mu_s_deg), else ''."""
     try:
         value = float(text)
     except ValueError:
         return ""
-    return f" (in degrees: a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g})" if (
-        param.unit == "deg" and "friction" in param.doc) else ""
-
-
-def _as_coefficient(param, value):
-    """', a friction coefficient VALUE is atan(VALUE) deg' for a friction angle, else ''."""
-    is_friction = "friction" in param.doc
-    return f", a friction coefficient {value:g} is {math.degrees(math.atan(value)):.4g} deg" if is_friction else ""
+    return f" (in degrees: {_as_friction(value)})" if _is_friction(param) else ""
 
 
 def idle_warnings(params, values):
@@ -537,10 +546,9 @@ def idle_warnings(params, values):
         other, choices = p.applies
         chosen = str(values[other])
         if not set(chosen.split(SEPARATOR)) & set(choices):
-            warnings.append(f"{name} = {values[name]:g}" if isinstance(values[name], float) else
-                            f"{name} = {values[name]}")
-            warnings[-1] += (f" does nothing with {other} = {chosen}: it acts only with {other} = "
-                             + " or ".join(choices))
+            value = f"{values[name]:g}" if isinstance(values[name], float) else values[name]
+            warnings.append(f"{name} = {value} does nothing with {other} = {chosen}: it acts only with {other} = "
+                            + " or ".join(choices))
     return warnings
 
 
