@@ -105,6 +105,15 @@ def well_posed_window(m, lowest=1e-9, highest=1e3, points=2400):
             math.inf if last == points - 1 else _crossing(well_posed, I[last], I[last + 1]))
 
 
+def well_posed_range(lower, upper):
+    """'only for lower < I < upper' of a ``well_posed_window``, an end at 0 or inf left out."""
+    if lower > 0.0 and upper < math.inf:
+        return f"only for {lower:.3g} < I < {upper:.3g}"
+    if lower > 0.0 or upper < math.inf:
+        return f"only for I > {lower:.3g}" if lower > 0.0 else f"only for I < {upper:.3g}"
+    return "for every I"
+
+
 def _crossing(holds, lo, hi):
     """The point in (lo, hi), both positive, where the predicate ``holds`` changes, by bisection in
     the logarithm."""

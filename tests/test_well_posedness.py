@@ -11,10 +11,10 @@ import pytest
 
 from mpisph.case import build_case, load_case_module, resolve_params
 from mpisph.parts import make_parts
-from mpisph.physics.mu_i import JOSTLE_STRESS, jostle_inertial_number, well_posed_range
+from mpisph.physics.mu_i import JOSTLE_STRESS, jostle_inertial_number
 from mpisph.physics.mu_i_law import friction
 from mpisph.well_posedness import criterion, ill_posed_dissipation_share, ill_posed_energy_share, ill_posedness, \
-    partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_window
+    partial_regularisation_alphas, partially_regularised_friction, table_1_law, well_posed_range, well_posed_window
 
 
 @pytest.mark.parametrize("I_s", [0.0, 0.01])

@@ -162,7 +162,7 @@ from ..neighbours import pair_difference, pair_offset
 from ..particles import MOVING, WALL_SLIP, Field, is_wall
 from ..scheme import Scheme
 from ..tensors import adjugate, component
-from ..well_posedness import well_posed_window
+from ..well_posedness import well_posed_range, well_posed_window
 from .implicit_viscosity import TOLERANCE, ImplicitViscosity
 from .mu_i_law import (MEAN_SECANT, friction, grain_density_ratio, grain_size, inertial_number, pair_viscosity,
                        regularised_viscosity)
@@ -342,15 +342,6 @@ def inertial_number_and_friction(n, kind, rho, rho_s, gamma_dot, law_p, dim, m, 
         else:
             I[i] = 0.0
         mu[i] = friction(I[i], m)
-
-
-def well_posed_range(lower, upper):
-    """'only for lower < I < upper', an end at 0 or inf (well_posed_window) left out."""
-    if lower > 0.0 and upper < math.inf:
-        return f"only for {lower:.3g} < I < {upper:.3g}"
-    if lower > 0.0 or upper < math.inf:
-        return f"only for I > {lower:.3g}" if lower > 0.0 else f"only for I < {upper:.3g}"
-    return "for every I"
 
 
 def pair_term_factors(dim, deviatoric):
@@ -542,7 +533,7 @@ class MuIScheme(MorrisWalls, Scheme):
             kernel_mean(n, ctx.start, ctx.nbr, ctx.xc, pa.rho, pa.mass, pa.kind, pa.strain, ctx.kernel.params,
                         mean_strain)
             rate_modulus(n, pa.kind, mean_strain, self.deviatoric_rate, self.dim, pa.gamma_dot)
-        law_p = pa.law_pressure if self.smoothed_pressure else self._no_law_pressure
+        law_p = self._law_pressure(pa)
         granular_state(n, pa.kind, pa.rho, pa.gamma_dot, B, self.carried, pa.rho_s, pa.p, pa.eta, self.dim,
                        self.params, law_p)
         if self.smoothed_pressure:
@@ -557,6 +548,10 @@ class MuIScheme(MorrisWalls, Scheme):
             viscous_force_tensor(n, pa.kind, pa.strain, pa.eta, B, self.deviatoric_stress, pa.T_visc)
         if self.isotropic:
             isotropic_pressure_stress(n, pa.kind, pa.p, B, pa.T_pressure)
+
+    def _law_pressure(self, pa):
+        """The law's pressure of the particles (law_pressure = carried_mean), or an empty array."""
+        return pa.law_pressure if self.smoothed_pressure else self._no_law_pressure
 
     def rates(self, ctx, dt):
         pa = ctx.particles
@@ -601,7 +596,7 @@ class MuIScheme(MorrisWalls, Scheme):
 
     def derived_fields(self, pa, n):
         I, mu = np.zeros(n), np.zeros(n)
-        law_p = pa.law_pressure if self.smoothed_pressure else self._no_law_pressure
+        law_p = self._law_pressure(pa)
         inertial_number_and_friction(n, pa.kind, pa.rho, pa.rho_s, pa.gamma_dot, law_p, self.dim, self.params, I, mu)
         stress = granular_stress_of(self, pa, n)
         return {"inertial_number": I, "friction": mu, "stress": stress, **solid_output_fields(stress, pa.v, n)}
