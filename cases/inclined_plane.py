@@ -14,6 +14,10 @@ With ``channel_width`` > 0 the layer flows in a channel that narrow, whose side
 walls hold it back (physics/side_walls.py; Jop et al. 2005): its steady profile
 is references.inclined_plane_velocity_between_walls, from which K_t then takes
 its Mach number.
+
+The layer's depth-averaged speed down the slope is diagnostics.csv's momentum_x /
+mass (the mass-weighted mean); scripts/incline_layers.py RUN_DIR compares its
+speeds and its profile, layer by layer, with the uniform flow (docs/INCLINE.md).
 """
 
 import dataclasses
