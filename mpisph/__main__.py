@@ -324,6 +324,7 @@ def run(args, comm):
                      diagnostics=None, progress=progress, stop=stop)
     if case.gauges:
         sim.gauges = GaugeRecorder(case, particles, comm, parts.scheme.derived)
+    wall0, step0 = time.perf_counter(), sim.step  # the phase timer's span: the first configuration on
     if not restarted:
         sim.configure_start()  # refuses overlapping bodies and walls before anything is written
     own_interval = restarted and values["output_interval"] == written["output_interval"]
@@ -335,7 +336,6 @@ def run(args, comm):
     if sim.gauges is not None:
         sim.gauges.open(out_dir, append=restarted, restart_time=t if restarted else None)
     progress.start(sim)
-    wall0, step0 = time.perf_counter(), sim.step
     stopped = None
     try:
         sim.run()

@@ -542,3 +542,16 @@ def test_a_restart_without_its_case_takes_the_frames(tmp_path):
         ends.append(read_frame(str(tmp_path / out / "frame_00003.hdf")))
     for name in ("x", "v", "rho", "p"):
         assert ends[0][name].tobytes() == ends[1][name].tobytes(), name
+
+
+def test_the_closing_lines_phases_fit_in_the_wall_time(tmp_path):
+    """The timing line's phase shares add up to at most the wall time: the first configuration
+    (configure_start, timed into the phases) lies inside it (they added up to 105-108 %, a 3D
+    probe's cube)."""
+    import re
+    r = mpisph(["dam_break_2d", "--set", "dp=0.2", "--t-end", "0.0004", "--output-interval", "0.0002",
+                "--out", tmp_path / "out"], ranks=1, timeout=120)
+    assert r.returncode == 0, r.stderr
+    [line] = [ln for ln in r.stdout.splitlines() if "timing: wall" in ln]
+    shares = [float(v) for v in re.findall(r" (\d+\.\d)%", line)]
+    assert len(shares) == 4 and sum(shares) <= 100.2, line
