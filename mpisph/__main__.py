@@ -1,4 +1,5 @@
-"""Command line: python -m mpisph CASE [options] | list | info CASE [--set ...] | report FRAME... | plot OUT_DIR [PNG]
+"""Command line: python -m mpisph CASE [options] | list | info CASE [--set ...] | info FRAME | OUT_DIR
+| report FRAME... | plot OUT_DIR [PNG]
 | compare CASE --stabiliser A,B,... (compare.py)
 
 Identical under ``mpirun -n N``; rank 0 prints. Bad input ends with one line
@@ -34,7 +35,7 @@ USAGE = ("python -m mpisph CASE [--set NAME=VALUE ...] [--t-end T] [--output-int
          "[--out DIR] [--restart FRAME] [--quiet]\n"
          "       python -m mpisph --restart FRAME [--set NAME=VALUE ...] [--t-end T] [--out DIR] [--quiet]\n"
          f"       {WORD_COMMANDS['list'][0]}\n"
-         "       python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME\n"
+         "       python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME | OUT_DIR\n"
          f"       {WORD_COMMANDS['report'][0]}\n"
          f"       {WORD_COMMANDS['plot'][0]}\n"
          f"       {COMPARE_USAGE}")
@@ -89,6 +90,7 @@ def cmd_info(name, overrides):
     forces = ", ".join(type(f).__name__ for f in case.forces)
     print(f"scheme {case.scheme}, integrator {parts.integrator.name}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
+    print(size_line(case, fields, values))
     print()
     params = all_params(module)
     width, default_width = max(map(len, params)), max(len(repr(p.default)) for p in params.values())
@@ -114,6 +116,25 @@ def cmd_info(name, overrides):
                                           if isinstance(g, Gauge) else
                                           f"t, then the material's top over its {len(g.stations)} station"
                                           f"{'s' * (len(g.stations) != 1)} (gauge_{g.name}_points.csv) [m]"))
+
+
+def size_line(case, fields, values):
+    """What a run of ``case`` holds, from its sources' estimates before any particle is made: the
+    particles, the memory to run them (memory.RUN_BYTES_PER_PARTICLE) and the frames' size."""
+    import math
+
+    import numpy as np
+
+    from .memory import RUN_BYTES_PER_PARTICLE
+    count = sum(s.estimate for s in case.sources)
+    per_frame = count * sum(np.dtype(f.dtype).itemsize * math.prod(f.shape_in(case.dim)) for f in fields)
+    frames = math.floor(values["t_end"] / values["output_interval"] + 1e-9) + 1
+
+    def size(n):
+        return f"{n / 1e9:.3g} GB" if n >= 1e9 else f"{n / 1e6:.3g} MB"
+    return (f"size: about {count:.3g} particles (walls included), about {size(count * RUN_BYTES_PER_PARTICLE)} to "
+            f"run over all ranks (at most {RUN_BYTES_PER_PARTICLE} bytes a particle, mpisph/memory.py), "
+            f"{size(per_frame)} of arrays a frame, {frames} frames to t_end")
 
 
 def cmd_frame_info(path):
@@ -372,10 +393,16 @@ def main(argv=None, comm=None):
                 cmd_list()
             return 0
         if argv[:1] == ["info"]:
-            info = Parser(prog="mpisph info", usage="python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME")
+            info = Parser(prog="mpisph info", usage="python -m mpisph info CASE [--set NAME=VALUE ...] | FRAME | OUT_DIR")
             info.add_argument("case")
             add_set(info)
             args = info.parse_args(argv[1:])
+            if os.path.isdir(args.case):  # a run's directory: its last frame
+                from .io.frames import list_frames
+                frames = list_frames(args.case)
+                if not frames:
+                    raise InputError(f"info: {args.case} holds no complete frames (frame_*.hdf)")
+                args.case = frames[-1]
             if args.case.endswith((".hdf", ".vtkhdf")) or (os.path.isfile(args.case) and not args.case.endswith(".py")):
                 if args.overrides:
                     raise InputError("info FRAME takes no --set: a frame holds the parameters it was written with")

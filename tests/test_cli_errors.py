@@ -13,7 +13,7 @@ from mpirun import mpisph, stderr_lines
 
 from mpisph.__main__ import main as mpisph_main
 from mpisph.arguments import with_times
-from mpisph.io.frames import read_frame
+from mpisph.io.frames import list_frames, read_frame
 from mpisph.launch import ROOT
 
 TINY = ["--set", "dp=0.2", "--t-end", "0.0004", "--output-interval", "0.0002", "--quiet"]
@@ -555,3 +555,26 @@ def test_the_closing_lines_phases_fit_in_the_wall_time(tmp_path):
     [line] = [ln for ln in r.stdout.splitlines() if "timing: wall" in ln]
     shares = [float(v) for v in re.findall(r" (\d+\.\d)%", line)]
     assert len(shares) == 4 and sum(shares) <= 100.2, line
+
+
+@pytest.mark.parametrize("case, dp", [("dam_break_2d", "0.05"), ("cube_failure_3d", "0.2")])
+def test_info_tells_a_runs_size_before_it_runs(tmp_path, capsys, case, dp):
+    """`info CASE --set dp=...` gives the particles (walls included) and the size of a frame's
+    arrays from the sources' estimates: within 5 % of the particles of a run, and its first frame's
+    file is that size to 10 % plus 0.1 MB of HDF5's own (a 3D probe found the size of a fine run
+    only once it was built); `info OUT_DIR` reads the run's last frame."""
+    import re
+    from mpisph.__main__ import cmd_info
+    cmd_info(case, {"dp": dp})
+    [line] = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("size: ")]
+    count = float(re.search(r"about (\S+) particles", line).group(1))
+    value, unit = re.search(r"([\d.e+-]+) ([MG])B of arrays a frame", line).groups()
+    frame_bytes = float(value) * (1e9 if unit == "G" else 1e6)
+    out = tmp_path / "out"
+    r = mpisph([case, "--set", f"dp={dp}", "--t-end", "1e-6", "--quiet", "--out", out], ranks=1, timeout=300)
+    assert r.returncode == 0, r.stderr
+    first = list_frames(str(out))[0]
+    assert count == pytest.approx(len(read_frame(first, walls=True)["x"]), rel=0.05)
+    assert frame_bytes <= os.path.getsize(first) <= 1.1 * frame_bytes + 1e5
+    assert mpisph_main(["info", str(out)]) == 0
+    assert capsys.readouterr().out.startswith(f"{list_frames(str(out))[-1]}: case {case}, ")
