@@ -1,6 +1,12 @@
-"""3D failure of a cohesive soil cube: a 2 m Drucker-Prager cube collapses under its own weight on a floor (000_ Sec. 5.3)."""
+"""3D failure of a cohesive soil cube: a 2 m Drucker-Prager cube collapses under its own weight on a floor (000_ Sec. 5.3).
 
-from mpisph.case import Param
+Recorded beside the energies (diagnostics.csv): the spread, as the largest distance of a particle
+from the cube's vertical axis (front), and the displacement of the particle nearest the middle of
+the top face (top_ux, top_uy, top_uz: its settlement). The plastic strain on the diagonal plane ABC
+is scripts/production.py's slice.
+"""
+
+from mpisph.case import Front, Param
 from mpisph.soil import cube_on_floor, scheme_params, soil_params
 
 PARAMS = {
@@ -15,4 +21,5 @@ PARAMS = {
 
 
 def setup(p):
-    return cube_on_floor(p, p.edge, p.floor, "soil cube")
+    return cube_on_floor(p, p.edge, p.floor, "soil cube", front=Front(origin=(0.0, 0.0, 0.0), axes=(0, 1)),
+                         probes={"top": (0.0, 0.0, p.edge)})

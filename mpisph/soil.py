@@ -83,12 +83,13 @@ def block_on_floor(p, L, H, floor, name):
     return _soil_in_tank(p, (0.0, 0.0), (L, H), (0.0, 0.0), (floor, 2.0 * H), name)
 
 
-def cube_on_floor(p, edge, floor, name):
-    """The 3D Case of the soil cube ``name`` (edge ``edge``) centred on a square floor of side
-    ``floor``, fenced by a rim a quarter of the cube high, parameters ``p``."""
+def cube_on_floor(p, edge, floor, name, **records):
+    """The 3D Case of the soil cube ``name`` (edge ``edge``) centred on the z axis on a square floor
+    of side ``floor`` at z = 0, fenced by a rim a quarter of the cube high, parameters ``p``;
+    ``records``: the Case's front, probes and gauges."""
     half, rim = 0.5 * edge, 0.25 * edge
     return _soil_in_tank(p, (-half, -half, 0.0), (half, half, edge), (-0.5 * floor, -0.5 * floor, 0.0),
-                         (0.5 * floor, 0.5 * floor, rim), name)
+                         (0.5 * floor, 0.5 * floor, rim), name, **records)
 
 
 def confined_layer(p, L, H, name, k_lateral):
@@ -98,11 +99,12 @@ def confined_layer(p, L, H, name, k_lateral):
     return _soil_in_tank(p, (0.0, 0.0), (L, H), (0.0, 0.0), (L, 2.0 * H), name, slip=True, k_lateral=k_lateral)
 
 
-def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None):
+def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None, **records):
     """Soil filling the box [lo, hi] inside an open-topped tank [tank_lo, tank_hi] of dummy walls
     (no-slip unless ``slip``) under geostatic stress (lateral coefficient ``k_lateral``, Jaky's
     1 - sin phi if None); the domain reaches one block height above the block's top. A side of the
-    block that is not a whole number of spacings is warned: its fill falls short of it."""
+    block that is not a whole number of spacings is warned: its fill falls short of it. ``records``
+    go to the Case (front, probes, gauges)."""
     dim = len(lo)
     soil = drucker_prager(p)
     height, top = hi[-1] - lo[-1], hi[-1]
@@ -128,4 +130,5 @@ def _soil_in_tank(p, lo, hi, tank_lo, tank_hi, name, slip=False, k_lateral=None)
         u_ref=float(np.sqrt(2.0 * p.g * height)),
         warnings=[w for w in (lattice_mismatch(f"the {name}'s {'xyz'[a]} side", hi[a] - lo[a], p.dp)
                               for a in range(dim)) if w],
+        **records,
     )

@@ -234,3 +234,13 @@ def test_a_gauge_outside_the_domain_is_warned_of():
     warned = gauge_warnings(case)
     assert [w.split(":")[0] for w in warned] == ["gauge 'tall'", "gauge 'wide'"]
     assert "4 of its 5 points lie outside the domain" in warned[0]  # y = 2.3, 4.6, 6.8 and 9 m, above 1 m and "1 of its 2 points" in warned[1]
+
+
+def test_the_cube_records_its_spread_and_the_settlement_of_its_tops_middle():
+    """cube_failure_3d's front is the radius from the cube's vertical axis, and its probe 'top' the
+    particle nearest the middle of the top face, a half spacing below it and off the axis (a 3D
+    probe found the cube recorded neither)."""
+    module = load_case_module("cube_failure_3d")
+    case = build_case(module, resolve_params(module, {"dp": "0.2"}))
+    assert case.front.origin == (0.0, 0.0, 0.0) and case.front.axes == (0, 1)
+    assert np.allclose(np.abs(case.probe_origins["top"]), (0.1, 0.1, 1.9))
