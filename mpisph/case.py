@@ -329,6 +329,7 @@ class Case:
         self.domain = (np.asarray(self.domain[0], float), np.asarray(self.domain[1], float))
         self.gravity = np.zeros(self.dim) if self.gravity is None else np.asarray(self.gravity, float)
         self.periodic = (False,) * self.dim if self.periodic is None else tuple(self.periodic)
+        self._check_countable()
         probes = {name: self._probe(name, where) for name, where in self.probes.items()}
         self.probes = {name: gid for name, (gid, _) in probes.items()}
         self.probe_origins = {name: origin for name, (_, origin) in probes.items()}
@@ -369,12 +370,23 @@ class Case:
             gid -= points.size
         return None
 
+    def _check_countable(self):
+        """Refuse a case with more particles than global ids (int64) number, before a probe looks
+        for its particle among them (memory.check_fits refuses the others too large to run)."""
+        from .memory import available_bytes, too_many
+        count = sum(s.estimate for s in self.sources)
+        if count >= 2**63:
+            available = available_bytes()
+            raise InputError(too_many(count, "the case has about", available) if available is not None else
+                             f"the case has about {count:.3g} particles, more than 64-bit ids number: choose a "
+                             "larger dp")
+
     def _nearest_body_particle(self, point):
         """The global id of the body particle nearest to ``point`` within 2 dp of it; None if none is."""
         reach, best, first = 2.0 * self.dp, (np.inf, None), 0
         for b in self.bodies:
             points = as_points(b.x)
-            index, x, _ = points.window(0, point[0] - reach, point[0] + reach)
+            index, x = points.near(point, reach)
             if len(index):
                 d = np.linalg.norm(x - point, axis=1)
                 k = int(np.argmin(d))

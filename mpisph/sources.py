@@ -27,6 +27,12 @@ class Points:
     def window(self, axis, lo, hi):
         raise NotImplementedError
 
+    def near(self, point, reach):
+        """(indices, positions) of its particles within ``reach`` of ``point`` along every axis (and
+        some beyond): here those of the window along x."""
+        index, x, _ = self.window(0, point[0] - reach, point[0] + reach)
+        return index, x
+
     def everything(self):
         """(positions, normals or None) of all its particles, for small cases and tests."""
         _, x, normal = self.window(0, -np.inf, np.inf)
@@ -73,6 +79,22 @@ class LatticePoints(Points):
     def window(self, axis, lo, hi):
         index = self.lattice.window(axis, lo, hi)
         return self.kept(index, self.lattice.points(index))
+
+    def near(self, point, reach):
+        """(indices, positions) of its particles in the box of lattice points within ``reach`` of
+        ``point`` along each of the frame's axes: a few, however fine the lattice (a slab along x
+        of a fine 3D lattice would hold billions)."""
+        lattice = self.lattice
+        u = lattice.frame.local(np.asarray(point, float)[None])[0] / lattice.dp - 0.5  # in index units
+        steps = int(np.ceil(reach / lattice.dp))
+        lo = np.maximum(np.floor(u).astype(np.int64) - steps, lattice.first)
+        hi = np.minimum(np.floor(u).astype(np.int64) + steps + 2, lattice.last)
+        if np.any(hi <= lo):
+            return np.zeros(0, np.int64), np.zeros((0, len(u)))
+        box = np.stack(np.meshgrid(*[np.arange(a, b) for a, b in zip(lo, hi)], indexing="ij"), -1).reshape(-1, len(u))
+        index = np.ravel_multi_index(tuple((box - lattice.first).T), lattice.shape)
+        index, x, _ = self.kept(index, lattice.points(index))
+        return index, x
 
     def kept(self, index, x):
         """(indices, positions, normals or None) of the points among ``index`` (at ``x``) that

@@ -244,3 +244,24 @@ def test_the_cube_records_its_spread_and_the_settlement_of_its_tops_middle():
     case = build_case(module, resolve_params(module, {"dp": "0.2"}))
     assert case.front.origin == (0.0, 0.0, 0.0) and case.front.axes == (0, 1)
     assert np.allclose(np.abs(case.probe_origins["top"]), (0.1, 0.1, 1.9))
+
+
+def test_a_lattice_finds_its_points_near_a_place_without_a_slab():
+    """LatticePoints.near gives the kept points within reach of a place, the same as the slab of the
+    window along x does, on a tilted frame; a probe of a body on a lattice of 8e36 points (the cube
+    at dp = 1e-12) is refused as too large, where the slab's size was a ValueError traceback."""
+    from mpisph.errors import InputError
+    from mpisph.sources import LatticePoints
+    c, s = np.cos(0.3), np.sin(0.3)
+    frame = Frame(origin=(0.1, -0.2), axes=((c, -s), (s, c)))
+    points = LatticePoints(Lattice((0, 0), (40, 30), 0.05, frame), keep=lambda x: x[:, 0] + x[:, 1] < 1.5)
+    rng = np.random.default_rng(3)
+    for place in rng.uniform(-0.5, 2.5, (20, 2)):
+        index, x = points.near(place, 0.1)
+        slab, xs, _ = points.window(0, place[0] - 0.1, place[0] + 0.1)
+        within = np.linalg.norm(xs - place, axis=1) <= 0.1
+        assert set(slab[within]) <= set(index)
+        assert np.all(np.abs(frame.local(x) - frame.local(place[None])) <= 0.1 + 0.05 + 1e-12)
+    module = load_case_module("cube_failure_3d")
+    with pytest.raises(InputError, match="the case has about 8e\\+36 particles"):
+        build_case(module, resolve_params(module, {"dp": "1e-12"}))
