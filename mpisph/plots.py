@@ -63,17 +63,23 @@ def _outline(ax, points, dp):
 def _view(moving, walls, dp):
     """Axis limits: the moving particles of the first and last frame, padded.
 
-    Walls just below or left of them (the floor, a back wall) are shown whole; walls
-    further out (an open tank's far end, tall side walls) are cut off at the padding.
+    Walls just beyond them along an axis (the floor under them, a back wall beside them, within
+    three paddings) are shown whole along it; walls further out (an open tank's far end, tall
+    side walls, a wide floor's ends) are cut off at the padding.
     """
     lo, hi = moving.min(axis=0), moving.max(axis=0)
     pad = max(0.05 * float(np.max(hi - lo)), 4 * dp)
-    lo, hi = lo - pad, hi + pad
-    if len(walls):
-        near = np.all((walls >= lo - 2 * pad) & (walls <= hi), axis=1)
-        if near.any():
-            lo = np.minimum(lo, walls[near].min(axis=0) - dp / 2)
-    return lo, hi
+    view_lo, view_hi = lo - pad, hi + pad
+    for a in range(len(lo)):
+        others = [b for b in range(len(lo)) if b != a]
+        beside = np.all((walls[:, others] >= lo[others]) & (walls[:, others] <= hi[others]), axis=1)
+        below = beside & (walls[:, a] >= view_lo[a] - 2 * pad) & (walls[:, a] < lo[a])
+        above = beside & (walls[:, a] <= view_hi[a] + 2 * pad) & (walls[:, a] > hi[a])
+        if below.any():
+            view_lo[a] = min(view_lo[a], walls[below, a].min() - dp / 2)
+        if above.any():
+            view_hi[a] = max(view_hi[a], walls[above, a].max() + dp / 2)
+    return view_lo, view_hi
 
 
 def colour_field(frame, moving):
