@@ -126,7 +126,7 @@ def size_line(case, fields, values):
     import numpy as np
 
     from .memory import RUN_BYTES_PER_PARTICLE
-    count = sum(s.estimate for s in case.sources)
+    count = case.particle_estimate
     per_frame = count * sum(np.dtype(f.dtype).itemsize * math.prod(f.shape_in(case.dim)) for f in fields)
     frames = math.floor(values["t_end"] / values["output_interval"] + 1e-9) + 1
 

@@ -322,6 +322,11 @@ class Case:
         """The particle sources of the bodies, then the walls (sources.py), in id order."""
         return [as_points(b.x) for b in self.bodies] + [w.points for w in self.walls]
 
+    @property
+    def particle_estimate(self):
+        """About how many particles its sources hold, walls included, before any is made."""
+        return sum(s.estimate for s in self.sources)
+
     def __post_init__(self):
         if isinstance(self.stabilisers, str):
             self.stabilisers = stabiliser_names(self.stabilisers)
@@ -374,7 +379,7 @@ class Case:
         """Refuse a case with more particles than global ids (int64) number, before a probe looks
         for its particle among them (memory.check_fits refuses the others too large to run)."""
         from .memory import available_bytes, too_many
-        count = sum(s.estimate for s in self.sources)
+        count = self.particle_estimate
         if count >= 2**63:
             available = available_bytes()
             raise InputError(too_many(count, "the case has about", available) if available is not None else
