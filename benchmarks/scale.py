@@ -157,6 +157,7 @@ def main():
     with tempfile.TemporaryDirectory() as out:
         mpirun_mpisph(["flume_3d", "--set", "dp=0.1", "--t-end", "0.01", "--out", out, "--quiet"],
                       accept=(0,))  # numba's cache
+    (ROOT / "runs").mkdir(exist_ok=True)  # a fresh checkout has none
     for ranks in a.ranks:
         with tempfile.TemporaryDirectory(dir=ROOT / "runs") as out:
             args = [os.path.abspath(__file__), "--dp", str(a.dp), "--worker", str(a.steps), out]

@@ -9,7 +9,8 @@
 #   submit_after ARGS...     a function that submits the batch script again, to start after this
 #                            job, with the mpisph arguments ARGS (CASE --restart FRAME), through run
 # sets JOB_ID (the batch system's job id) and, where the batch system sends no signal before the
-# walltime, SIGNAL_AFTER (seconds after the start when this shell sends itself SIGUSR1); and may set (environment, or the submission's -v/--export):
+# walltime, SIGNAL_AFTER (seconds after the job's start, bash's SECONDS, when this shell sends itself
+# SIGUSR1: the check and the warm-up count); and may set (environment, or the submission's -v/--export):
 #   OUT               output directory (default runs/CASE-JOB_ID, CASE a case file's name without .py;
 #                     a follow-up job keeps it)
 #   NUMBA_CACHE_DIR   compiled kernels (default node-local: $TMPDIR or /tmp, per user)
@@ -66,7 +67,7 @@ else
     RUN_PID=$!
     TIMER_PID=""
     if [ -n "${SIGNAL_AFTER:-}" ]; then
-        (sleep "$SIGNAL_AFTER" && kill -USR1 $$) &
+        (sleep "$(( SIGNAL_AFTER > SECONDS ? SIGNAL_AFTER - SECONDS : 0 ))" && kill -USR1 $$) &
         TIMER_PID=$!
     fi
     trap 'say "signal received: asking the run to stop"; kill -USR1 "$RUN_PID" 2>/dev/null || true' USR1 TERM

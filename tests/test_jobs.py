@@ -78,6 +78,21 @@ def test_pbs_job_lines(tmp_path):
     ]
 
 
+@pytest.mark.parametrize("walltime, after", [("3600", 3480), ("12:00:00", 43080), ("90:00", 5280), ("0:2:05", 5)])
+def test_the_pbs_walltime_takes_seconds_or_hours_minutes_seconds(tmp_path, walltime, after):
+    """PBS_WALLTIME as the site sets it, seconds or HH:MM:SS: its SIGUSR1 comes 120 s before it (a
+    cluster probe's 12:00:00 was a shell syntax error, and the job ran on without a timer); a
+    walltime of another form stops the job in one line."""
+    nodefile = tmp_path / "nodes"
+    nodefile.write_text("n1\n")
+    env = {"PBS_O_WORKDIR": str(ROOT), "PBS_NODEFILE": str(nodefile), "PBS_JOBID": "9.server", "CASE": "dam_break_2d",
+           "PBS_WALLTIME": walltime}
+    assert f"mpisph job: SIGUSR1 to this job in {after} s" in _render("pbs/mpisph.pbs", env)
+    r = subprocess.run(["bash", str(ROOT / "jobs" / "pbs" / "mpisph.pbs")], capture_output=True, text=True, timeout=60,
+                       env={"PATH": os.environ["PATH"], "MPISPH_DRY_RUN": "1", **env, "PBS_WALLTIME": "12h"})
+    assert r.returncode == 2 and r.stderr.strip().splitlines() == ["mpisph job: walltime '12h' is not [[HH:]MM:]SS"]
+
+
 @pytest.mark.parametrize("script, env", [
     ("slurm/mpisph.sbatch", {"SLURM_SUBMIT_DIR": str(ROOT), "SLURM_NNODES": "1", "SLURM_NTASKS": "2",
                              "SLURM_JOB_ID": "7"}),
