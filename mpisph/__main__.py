@@ -90,7 +90,7 @@ def cmd_info(name, overrides):
     forces = ", ".join(type(f).__name__ for f in case.forces)
     print(f"scheme {case.scheme}, integrator {parts.integrator.name}, "
           f"stabilisers {', '.join(case.stabilisers) or 'none'}" + (f", forces {forces}" if forces else ""))
-    print(size_line(case, fields, values))
+    print(size_line(case, fields, values, parts.kernel.support))
     print()
     params = all_params(module)
     width, default_width = max(map(len, params)), max(len(repr(p.default)) for p in params.values())
@@ -118,14 +118,16 @@ def cmd_info(name, overrides):
                                           f"{'s' * (len(g.stations) != 1)} (gauge_{g.name}_points.csv) [m]"))
 
 
-def size_line(case, fields, values):
+def size_line(case, fields, values, support):
     """What a run of ``case`` holds, from its sources' estimates before any particle is made: the
-    particles, the memory to run them (memory.RUN_BYTES_PER_PARTICLE) and the frames' size."""
+    particles, the memory to run them (memory.RUN_BYTES_PER_PARTICLE), the frames' size, and the
+    most ranks its slabs of the kernel's ``support`` allow."""
     import math
 
     import numpy as np
 
     from .memory import RUN_BYTES_PER_PARTICLE
+    from .parallel.decomposition import slab_count
     count = case.particle_estimate
     per_frame = count * sum(np.dtype(f.dtype).itemsize * math.prod(f.shape_in(case.dim)) for f in fields)
     frames = math.floor(values["t_end"] / values["output_interval"] + 1e-9) + 1
@@ -134,7 +136,9 @@ def size_line(case, fields, values):
         return f"{n / 1e9:.3g} GB" if n >= 1e9 else f"{n / 1e6:.3g} MB"
     return (f"size: about {count:.3g} particles (walls included), about {size(count * RUN_BYTES_PER_PARTICLE)} to "
             f"run over all ranks (at most {RUN_BYTES_PER_PARTICLE} bytes a particle, mpisph/memory.py), "
-            f"{size(per_frame)} of arrays a frame, {frames} frames to t_end")
+            f"{size(per_frame)} of arrays a frame, {frames} frames to t_end; at most "
+            f"{slab_count(case.domain[0][case.slab_axis], case.domain[1][case.slab_axis], support)} ranks "
+            f"(slabs {support:g} m wide along {'xyz'[case.slab_axis]})")
 
 
 def cmd_frame_info(path):

@@ -562,7 +562,8 @@ def test_info_tells_a_runs_size_before_it_runs(tmp_path, capsys, case, dp):
     """`info CASE --set dp=...` gives the particles (walls included) and the size of a frame's
     arrays from the sources' estimates: within 5 % of the particles of a run, and its first frame's
     file is that size to 10 % plus 0.1 MB of HDF5's own (a 3D probe found the size of a fine run
-    only once it was built); `info OUT_DIR` reads the run's last frame."""
+    only once it was built), and the most ranks its slabs allow; `info OUT_DIR` reads the run's
+    last frame."""
     import re
     from mpisph.__main__ import cmd_info
     cmd_info(case, {"dp": dp})
@@ -576,5 +577,15 @@ def test_info_tells_a_runs_size_before_it_runs(tmp_path, capsys, case, dp):
     first = list_frames(str(out))[0]
     assert count == pytest.approx(len(read_frame(first, walls=True)["x"]), rel=0.05)
     assert frame_bytes <= os.path.getsize(first) <= 1.1 * frame_bytes + 1e5
+    # the most ranks is the count of slabs the run's decomposition refuses more ranks than
+    from mpisph.case import build_case, load_case_module, resolve_params
+    from mpisph.errors import InputError
+    from mpisph.parallel.decomposition import SlabDecomposition
+    ranks, support = re.search(r"at most (\d+) ranks \(slabs (\S+) m wide", line).groups()
+    module = load_case_module(case)
+    built = build_case(module, resolve_params(module, {"dp": dp}))
+    lo, hi = (corner[built.slab_axis] for corner in built.domain)
+    with pytest.raises(InputError, match=f"use at most {ranks} ranks"):
+        SlabDecomposition(SimpleNamespace(size=int(ranks) + 1), built.slab_axis, lo, hi, float(support))
     assert mpisph_main(["info", str(out)]) == 0
     assert capsys.readouterr().out.startswith(f"{list_frames(str(out))[-1]}: case {case}, ")

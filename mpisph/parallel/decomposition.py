@@ -24,6 +24,12 @@ from .exchange import alltoallv_rows, exchange_counts
 BINS_PER_SUPPORT = 8
 
 
+def slab_count(lo, hi, support):
+    """How many slabs a kernel's ``support`` wide the domain [lo, hi] along the slab axis holds:
+    the most ranks a run can take."""
+    return max(1, math.ceil((float(hi) - float(lo)) / support - 1e-9))
+
+
 class SlabDecomposition:
     """Cuts along ``axis`` between ``comm.size`` slabs."""
 
@@ -31,7 +37,7 @@ class SlabDecomposition:
         self.comm = comm
         self.axis = axis
         self.lo = float(lo)
-        slabs = max(1, math.ceil((float(hi) - self.lo) / support - 1e-9))
+        slabs = slab_count(lo, hi, support)
         if comm.size > slabs:
             raise InputError(
                 f"{comm.size} ranks but the domain has only {slabs} slabs of width "
