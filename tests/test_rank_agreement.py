@@ -255,8 +255,9 @@ def test_frames_hold_plausible_values(runs, case):
     """Every array of every particle of the run's last frame, walls included, is finite, and what a
     frame derives from the state agrees with that state: the bitwise test cannot see a value that
     is wrong the same way on every rank count. Speed |v|, the vertical stress (y in 2D, z in 3D) and
-    the von Mises stress sqrt(3/2 s:s) of the packed stress; for mu(I) the inertial number from the
-    volume fraction (004_ Eq. 8) and a friction between mu_s and mu_2 (Eq. 7); positive masses and
+    the von Mises stress sqrt(3/2 s:s) of the packed stress; for mu(I) the inertial number the law
+    takes (from the volume fraction, 004_ Eq. 8, or with law_pressure=carried_mean from the strain
+    rate and the law's pressure, Eq. 6) and a friction between mu_s and mu_2 (Eq. 7); positive masses and
     moving densities, a plastic strain that only accumulates, unit normals on the walls, and the
     documented codes of kind and surface."""
     f = read_frame(list_frames(runs(case)[1])[-1], walls=True)
@@ -286,7 +287,12 @@ def test_frames_hold_plausible_values(runs, case):
     if "friction" in f:
         p = f["params"]
         rho, rho_s = f["rho"][moving], f["rho_s"][moving]
-        I = np.maximum(0.0, (p["phi_max"] - rho / rho_s) / (p["phi_max"] - p["phi_min"]))
+        if "law_pressure" in f:  # law_pressure=carried_mean: Eq. 6 from the law's pressure, d of Eq. 43
+            d = p["d"] * (rho_s / p["rho_s0"]) ** (-1.0 / dim)
+            law_p = f["law_pressure"][moving]
+            I = np.where(law_p > 0, f["gamma_dot"][moving] * d * np.sqrt(rho_s / np.where(law_p > 0, law_p, 1.0)), 0.0)
+        else:
+            I = np.maximum(0.0, (p["phi_max"] - rho / rho_s) / (p["phi_max"] - p["phi_min"]))
         np.testing.assert_allclose(f["inertial_number"][moving], I, rtol=1e-12, atol=1e-15)
         mu_s, mu_2 = np.tan(np.radians([p["mu_s_deg"], p["mu_2_deg"]]))
         mu = f["friction"][moving]
