@@ -34,9 +34,10 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--at", type=float, nargs="+", default=[1.0, 3.0], help="times [s] of the displacements")
     a = ap.parse_args()
+    firsts = {}
     for run in a.runs:
         run_params(ap, run, ("cohesion", "phi", "psi", "rho0", "g"), "soil runs (vertical_cut)")
-        first = read_frame(list_frames(run)[0])
+        first = firsts[run] = read_frame(list_frames(run)[0])
         dp = float(first["params"]["dp"])
         level = float(np.mean(surface_profile(first, dp)[1] > cut_height(first) - 0.5 * dp))
         if level < 1.0:
@@ -48,7 +49,7 @@ def main():
     print("|---" * (7 + len(a.at)) + "|")
     for run in a.runs:
         paths = list_frames(run)
-        first = read_frame(paths[0])
+        first = firsts[run]
         p = first["params"]
         height = cut_height(first)
         gamma = float(p["rho0"]) * float(p["g"])
